@@ -1,0 +1,42 @@
+# The README's two commands are `make reproduce` and `make test`; both bootstrap .venv from pyproject.toml.
+PYTHON ?= python3
+VENV := .venv
+PY := $(VENV)/bin/python
+STAMP := $(VENV)/.installed
+
+.PHONY: setup regenerate lint test test-slow bench reproduce clean
+
+$(STAMP): pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --disable-pip-version-check -e '.[derive,dev]'
+	touch $(STAMP)
+
+setup: $(STAMP)
+
+## regenerate: derive the model with SymPy and rewrite generated/ (deterministic)
+regenerate: setup
+	$(PY) -m derive --output generated
+
+## lint: ruff check and format check over the whole tree
+lint: setup
+	$(PY) -m ruff check .
+	$(PY) -m ruff format --check .
+
+## test: lint, generated-code staleness, fast tests
+test: setup lint
+	$(PY) -m pytest -m "not slow" -q
+
+## test-slow: the tests marked slow (full regeneration, independent derivation, wheel install)
+test-slow: setup
+	$(PY) -m pytest -m slow -q
+
+## bench: wall times of regeneration, import and model evaluation (medians, with ratios)
+bench: setup
+	$(PY) -m tests.bench
+
+## reproduce: the main job on the default loader
+reproduce: setup
+	$(VENV)/bin/loader-model reproduce
+
+clean:
+	rm -rf $(VENV) build dist *.egg-info .pytest_cache .ruff_cache

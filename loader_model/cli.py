@@ -1,0 +1,48 @@
+"""The ``loader-model`` command line: one subcommand per module in :mod:`loader_model.commands`.
+
+Each command module exposes ``HELP`` (one line), ``add_arguments(parser)`` and ``run(args) -> int``,
+and keeps its heavy imports inside ``run`` so that ``loader-model --help`` stays fast.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+from collections.abc import Sequence
+
+#: Subcommand name -> module in ``loader_model.commands``.
+COMMANDS: dict[str, str] = {
+    "model": "loader_model.commands.model_command",
+    "reproduce": "loader_model.commands.reproduce_command",
+}
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """Build the argument parser with every registered subcommand."""
+    parser = argparse.ArgumentParser(
+        prog="loader-model",
+        description="Model, control and ride evaluation of a pump-controlled skid-steer loader.",
+    )
+    subparsers = parser.add_subparsers(dest="command", required=True, metavar="COMMAND")
+    for name, module_name in COMMANDS.items():
+        module = importlib.import_module(module_name)
+        sub = subparsers.add_parser(name, help=module.HELP, description=module.__doc__)
+        module.add_arguments(sub)
+        sub.set_defaults(_run=module.run)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``loader-model`` command; returns the process exit code."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        return int(args._run(args))
+    except (ValueError, FileNotFoundError) as error:
+        print(f"loader-model {args.command}: error: {error}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,1 @@
+"""Subcommands of the ``loader-model`` command line (see :mod:`loader_model.cli`)."""
