@@ -1,0 +1,202 @@
+"""The generated loader model bound to one set of parameter values (paper section 2.1, Eq. 25-40).
+
+:class:`LoaderDynamics` validates its arguments, computes the static equilibrium (tyre loads and
+cylinder force that make p = 0 an equilibrium, DESIGN.md "Gravity") and evaluates the CasADi
+functions of ``loader_model_generated``. It never imports SymPy.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+import loader_model_generated as generated
+from loader_model.arrays import finite_scalar, finite_vector
+
+__all__ = [
+    "COORDINATE_NAMES",
+    "EXOGENOUS_NAMES",
+    "OUTPUT_NAMES",
+    "PARAMETER_NAMES",
+    "STATE_NAMES",
+    "LinearModel",
+    "LoaderDynamics",
+]
+
+PARAMETER_NAMES: tuple[str, ...] = generated.PARAMETER_NAMES
+COORDINATE_NAMES: tuple[str, ...] = generated.COORDINATE_NAMES
+STATE_NAMES: tuple[str, ...] = generated.STATE_NAMES
+EXOGENOUS_NAMES: tuple[str, ...] = generated.EXOGENOUS_NAMES
+OUTPUT_NAMES: tuple[str, ...] = generated.OUTPUT_NAMES
+_STATIC_LOADS = ("F_Ay0", "F_By0")
+
+
+@dataclass(frozen=True)
+class LinearModel:
+    """ẋ = A x + B u + E w, y = C x + D_u u + D_w w (Eq. 38-40) with named signals."""
+
+    A: np.ndarray
+    B: np.ndarray
+    E: np.ndarray
+    C: np.ndarray
+    D_u: np.ndarray
+    D_w: np.ndarray
+    state_names: tuple[str, ...] = STATE_NAMES
+    input_names: tuple[str, ...] = ("F_act",)
+    exogenous_names: tuple[str, ...] = EXOGENOUS_NAMES
+    output_names: tuple[str, ...] = OUTPUT_NAMES
+
+    def state_space(self, *, exogenous: bool = True, name: str = "loader") -> Any:
+        """Return a python-control ``StateSpace`` with named states, inputs and outputs.
+
+        Inputs are F_act [N] and, with ``exogenous``, the road and disturbance inputs w.
+        """
+        import control
+
+        inputs = list(self.input_names)
+        b_matrix, d_matrix = self.B, self.D_u
+        if exogenous:
+            inputs += list(self.exogenous_names)
+            b_matrix = np.hstack([self.B, self.E])
+            d_matrix = np.hstack([self.D_u, self.D_w])
+        return control.ss(
+            self.A,
+            b_matrix,
+            self.C,
+            d_matrix,
+            states=list(self.state_names),
+            inputs=inputs,
+            outputs=list(self.output_names),
+            name=name,
+        )
+
+
+def _dense(value: Any) -> np.ndarray:
+    return np.asarray(value.full() if hasattr(value, "full") else value, dtype=float)
+
+
+class LoaderDynamics:
+    """Generated equations of motion with bound parameter values.
+
+    Parameters
+    ----------
+    parameter_values
+        A value for every name in :data:`PARAMETER_NAMES` (SI units, see
+        ``loader_model_generated.PARAMETER_UNITS``). The static tyre loads ``F_Ay0`` and
+        ``F_By0`` may be left out: with ``equilibrium=True`` they are computed so that p = 0 is a
+        static equilibrium (and replace given values).
+    equilibrium
+        Compute the static tyre loads from the static equilibrium.
+
+    Raises
+    ------
+    ValueError
+        On a missing, unknown or non-finite parameter, or a mass matrix that is not positive
+        definite at p = 0.
+    """
+
+    def __init__(self, parameter_values: Mapping[str, float], *, equilibrium: bool = True) -> None:
+        names = set(PARAMETER_NAMES)
+        unknown = sorted(set(parameter_values) - names)
+        if unknown:
+            raise ValueError(f"unknown model parameters {unknown}; allowed: {list(PARAMETER_NAMES)}")
+        optional = set(_STATIC_LOADS) if equilibrium else set()
+        missing = [n for n in PARAMETER_NAMES if n not in parameter_values and n not in optional]
+        if missing:
+            raise ValueError(f"missing model parameters {missing}")
+        values = {n: finite_scalar(n, parameter_values.get(n, 0.0)) for n in PARAMETER_NAMES}
+        vector = np.array([values[n] for n in PARAMETER_NAMES])
+        loads = generated.function("static_equilibrium")(vector)
+        self.static_cylinder_force_N = float(loads[2])
+        """Cylinder force F_act0 that holds the boom at p = 0 [N]."""
+        if equilibrium:
+            for name, load in zip(_STATIC_LOADS, loads[:2], strict=True):
+                vector[PARAMETER_NAMES.index(name)] = float(load)
+        self.parameters = vector
+        """Parameter vector in the order of :data:`PARAMETER_NAMES`."""
+        self._check_mass_matrix()
+
+    def _check_mass_matrix(self) -> None:
+        mass = self.mass_matrix(np.zeros(4))
+        eigenvalues = np.linalg.eigvalsh(0.5 * (mass + mass.T))
+        if not np.all(eigenvalues > 0):
+            raise ValueError(
+                "the mass matrix at p = 0 is not positive definite (eigenvalues "
+                f"{eigenvalues.tolist()}); check m_1, m_2 > 0, J_1, J_2 > 0"
+            )
+
+    def parameter(self, name: str) -> float:
+        """Value of the parameter ``name``."""
+        if name not in PARAMETER_NAMES:
+            raise ValueError(f"unknown model parameter {name!r}; allowed: {list(PARAMETER_NAMES)}")
+        return float(self.parameters[PARAMETER_NAMES.index(name)])
+
+    def mass_matrix(self, p: Any) -> np.ndarray:
+        """M(p), Eq. 25 (Eq. 32 at p = 0)."""
+        p = finite_vector("p", p, 4)
+        return _dense(generated.function("mass_matrix")(p, self.parameters))
+
+    def forward_dynamics(
+        self,
+        p: Any,
+        pd: Any,
+        force_N: float | None = None,
+        road_m: Any = (0.0, 0.0, 0.0, 0.0),
+        road_rate_m_s: Any = (0.0, 0.0, 0.0, 0.0),
+        disturbance: Any = (0.0, 0.0, 0.0),
+    ) -> np.ndarray:
+        """Accelerations p̈ (Eq. 25) with unilateral tyre contact.
+
+        ``force_N`` is the total lift-cylinder force (default: the static force F_act0);
+        ``road_m`` = (w_Ax, w_Ay, w_Bx, w_By); ``disturbance`` = (F_dx, F_dy, M_d) at H.
+        """
+        force = self.static_cylinder_force_N if force_N is None else force_N
+        args = self._arguments(p, pd, force, road_m, road_rate_m_s, disturbance)
+        return _dense(generated.function("forward_dynamics")(*args)).ravel()
+
+    def linearise(
+        self,
+        p: Any = (0.0, 0.0, 0.0, 0.0),
+        pd: Any = (0.0, 0.0, 0.0, 0.0),
+        force_N: float | None = None,
+        road_m: Any = (0.0, 0.0, 0.0, 0.0),
+        road_rate_m_s: Any = (0.0, 0.0, 0.0, 0.0),
+        disturbance: Any = (0.0, 0.0, 0.0),
+    ) -> LinearModel:
+        """Linear model (Eq. 38-40) at an operating point; default: the static equilibrium.
+
+        Uses the paper's linear tyre law (Eq. 1-4), i.e. both tyres in contact.
+        """
+        force = self.static_cylinder_force_N if force_N is None else force_N
+        args = self._arguments(p, pd, force, road_m, road_rate_m_s, disturbance)
+        a, b, e, c, d_u, d_w, _ = (_dense(m) for m in generated.function("linearisation")(*args))
+        return LinearModel(A=a, B=b, E=e, C=c, D_u=d_u, D_w=d_w)
+
+    def cylinder_kinematics(self, p: Any, pd: Any = (0.0, 0.0, 0.0, 0.0)) -> dict[str, float]:
+        """x_cyl [m], ẋ_cyl [m/s], dx_cyl/dφ [m/rad] (Eq. 35) and γ [rad] (Eq. 15-16)."""
+        p, pd = finite_vector("p", p, 4), finite_vector("pd", pd, 4)
+        values = generated.function("cylinder_kinematics")(p, pd, self.parameters)
+        names = ("x_cyl", "xd_cyl", "dx_cyl_dphi", "gamma")
+        return {name: float(value) for name, value in zip(names, values, strict=True)}
+
+    def point_positions(self, p: Any) -> dict[str, np.ndarray]:
+        """World positions [m] of the points A, B, C, D, E, G, H, N, S."""
+        p = finite_vector("p", p, 4)
+        values = generated.function("point_positions")(p, self.parameters)
+        return {f"{k}": _dense(v).ravel() for k, v in zip("ABCDEGHNS", values, strict=True)}
+
+    def _arguments(
+        self, p: Any, pd: Any, force: Any, road: Any, road_rate: Any, disturbance: Any
+    ) -> list[np.ndarray]:
+        return [
+            finite_vector("p", p, 4),
+            finite_vector("pd", pd, 4),
+            finite_vector("force_N", force, 1),
+            finite_vector("road_m", road, 4),
+            finite_vector("road_rate_m_s", road_rate, 4),
+            finite_vector("disturbance", disturbance, 3),
+            self.parameters,
+        ]

@@ -1,0 +1,106 @@
+"""Building blocks of the parameter dataclasses: allowed ranges, unit metadata, sources.
+
+Every leaf field of a parameter dataclass carries metadata: its SI unit string (checked against
+the TOML file, no conversion), its allowed :class:`Range`, its shape (0 for a scalar, n for a
+tuple of n floats) and whether it is an integer count.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+__all__ = [
+    "FINITE",
+    "NONNEGATIVE",
+    "POSITIVE",
+    "Range",
+    "Sourced",
+    "integer",
+    "si",
+    "sources_field",
+    "unit_of",
+]
+
+
+@dataclass(frozen=True)
+class Range:
+    """Allowed interval of a parameter value; ``str()`` gives it for error messages.
+
+    Attributes
+    ----------
+    low, high : float
+        Bounds (infinite for an open end).
+    low_open, high_open : bool
+        Whether the bound itself is excluded.
+    """
+
+    low: float = -math.inf
+    high: float = math.inf
+    low_open: bool = False
+    high_open: bool = False
+
+    def contains(self, value: float) -> bool:
+        """Return True when the finite ``value`` lies in the interval."""
+        above = value > self.low if self.low_open else value >= self.low
+        below = value < self.high if self.high_open else value <= self.high
+        return above and below
+
+    def __str__(self) -> str:
+        if math.isinf(self.low) and math.isinf(self.high):
+            return "any finite value"
+        if math.isinf(self.high):
+            return f"{'>' if self.low_open else '>='} {self.low:g}"
+        if math.isinf(self.low):
+            return f"{'<' if self.high_open else '<='} {self.high:g}"
+        left = "(" if self.low_open else "["
+        right = ")" if self.high_open else "]"
+        return f"{left}{self.low:g}, {self.high:g}{right}"
+
+
+#: Any finite number.
+FINITE = Range()
+#: Strictly positive (masses, inertias, stiffnesses, volumes, diameters, ...).
+POSITIVE = Range(0.0, low_open=True)
+#: Zero or positive (damping, friction, leakage conductance).
+NONNEGATIVE = Range(0.0)
+
+
+def si(unit: str, allowed: Range = FINITE, shape: int = 0) -> dict[str, Any]:
+    """Field metadata of a float (``shape=0``) or a tuple of ``shape`` floats in ``unit``."""
+    return {"unit": unit, "allowed": allowed, "shape": shape, "integer": False}
+
+
+def integer(allowed: Range = Range(1.0)) -> dict[str, Any]:
+    """Field metadata of a dimensionless integer count (unit ``"-"``)."""
+    return {"unit": "-", "allowed": allowed, "shape": 0, "integer": True}
+
+
+def sources_field() -> Any:
+    """Field holding ``(dotted path, source)`` pairs in schema order; compared, not printed."""
+    return field(default=(), repr=False, metadata={"sources": True})
+
+
+def unit_of(cls: type, name: str) -> str:
+    """Return the SI unit string of leaf field ``name`` of parameter dataclass ``cls``."""
+    return cls.__dataclass_fields__[name].metadata["unit"]
+
+
+class Sourced:
+    """Mixin of the top-level parameter sets: the one-line source or reason of every value."""
+
+    sources: tuple[tuple[str, str], ...]
+
+    def source(self, path: str) -> str:
+        """Return the source/reason of the value at dotted ``path`` (e.g. ``"chassis.mass"``).
+
+        Raises
+        ------
+        KeyError
+            If no source is recorded for ``path``.
+        """
+        for key, text in self.sources:
+            if key == path:
+                return text
+        raise KeyError(path)

@@ -1,0 +1,229 @@
+"""Typed, immutable parameter sets of the loader (the schema of the TOML parameter files).
+
+SI rule
+-------
+Every number is in SI base or derived units (m, kg, s, N, Pa, rad, Hz) with one exception taken
+from the paper's Table 2 and nomenclature: the pump's per-revolution quantities (displacement in
+m³/rev, shaft speed in rev/s, displacement rate in m³/(rev·s)), so that the flow is simply
+``Q = V_p n``. The unit of every field is in its dataclass metadata (:func:`unit_of`) and in the
+TOML file, where it is checked on loading (no conversion).
+
+Frame convention
+----------------
+Points are ``(x, y)`` in metres in the chassis frame: origin at the chassis centre of gravity H,
+x forward (towards the bucket), y up, with the boom at its operating angle φ0 (the configuration
+p = 0 of Eq. 26). Points on the boom (E, centres of gravity) are given in the same frame at φ0,
+with signs, not as the paper's abs()-based distances of Eq. 8, 9 (DESIGN.md errata 2)::
+
+            D o------- boom --------.
+             /|  E                    `-.  G (boom + load)
+            / |/                          `-[bucket]
+           /  C         S    H +------ N
+          '--------------------------------'
+               B o                  o A          (x forward ->, y up)
+
+The dataclasses carry no validation of their own: :func:`loader_model.parameters.validate` checks
+ranges and consistency, and the TOML loaders call it before returning.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+from loader_model.parameter_fields import (
+    NONNEGATIVE,
+    POSITIVE,
+    Range,
+    Sourced,
+    si,
+    sources_field,
+    unit_of,
+)
+from loader_model.parameter_hydraulics import (
+    AccumulatorParameters,
+    ControllerParameters,
+    CylinderParameters,
+    FrictionParameters,
+    HydraulicParameters,
+    LeakageParameters,
+    PumpParameters,
+)
+
+__all__ = [
+    "AccumulatorParameters",
+    "AxleTyre",
+    "BoomParameters",
+    "BucketLoad",
+    "ChassisParameters",
+    "ControllerParameters",
+    "CylinderParameters",
+    "EnvironmentParameters",
+    "FrictionParameters",
+    "Geometry",
+    "HydraulicParameters",
+    "LeakageParameters",
+    "LoaderParameters",
+    "Point",
+    "PumpParameters",
+    "TyreParameters",
+    "unit_of",
+]
+
+#: A point ``(x, y)`` in metres in the chassis frame (see the module docstring).
+Point = tuple[float, float]
+
+
+@dataclass(frozen=True)
+class Geometry:
+    """Points of the chassis and of the boom at the operating boom angle (all in m).
+
+    Attributes
+    ----------
+    boom_angle : float
+        φ0 = θ2 − θ1 at p = 0 in rad: inclination of the line from D to the bucket hinge pin,
+        counter-clockwise from the chassis x axis. Documents the configuration of the points.
+    A, B : Point
+        Front and rear axle (tyre forces, Eq. 1-4).
+    C : Point
+        Lift-cylinder base on the chassis.
+    D : Point
+        Boom pivot.
+    S : Point
+        Seat reference point (ISO 2631-1 evaluation, section 5.3).
+    N : Point
+        Second accelerometer ahead of H for the pitch acceleration (section 3.3).
+    E : Point
+        Cylinder rod end on the boom (Eq. 15, 16).
+    """
+
+    boom_angle: float = field(metadata=si("rad", Range(-math.pi / 2, math.pi / 2)))
+    A: Point = field(metadata=si("m", shape=2))
+    B: Point = field(metadata=si("m", shape=2))
+    C: Point = field(metadata=si("m", shape=2))
+    D: Point = field(metadata=si("m", shape=2))
+    S: Point = field(metadata=si("m", shape=2))
+    N: Point = field(metadata=si("m", shape=2))
+    E: Point = field(metadata=si("m", shape=2))
+
+
+@dataclass(frozen=True)
+class ChassisParameters:
+    """Chassis, body 1 of Eq. 6, 7.
+
+    Attributes
+    ----------
+    mass : float
+        m1 in kg.
+    inertia : float
+        J1 about H in kg·m².
+    """
+
+    mass: float = field(metadata=si("kg", POSITIVE))
+    inertia: float = field(metadata=si("kg m^2", POSITIVE))
+
+
+@dataclass(frozen=True)
+class BoomParameters:
+    """Boom with the bucket attachment structure, without the bucket load (part of body 2).
+
+    Attributes
+    ----------
+    mass : float
+        Mass in kg.
+    cog : Point
+        Centre of gravity in m (chassis frame, operating angle).
+    inertia : float
+        Moment of inertia about ``cog`` in kg·m².
+    """
+
+    mass: float = field(metadata=si("kg", POSITIVE))
+    cog: Point = field(metadata=si("m", shape=2))
+    inertia: float = field(metadata=si("kg m^2", POSITIVE))
+
+
+@dataclass(frozen=True)
+class BucketLoad(Sourced):
+    """One bucket load case (section 5.3: 340 kg empty bucket, 770 kg concrete-filled).
+
+    Attributes
+    ----------
+    mass : float
+        Mass in kg.
+    cog : Point
+        Centre of gravity in m (chassis frame, operating angle).
+    inertia : float
+        Moment of inertia about ``cog`` in kg·m².
+    pressure_normalisation : float
+        ‖p_A‖∞ of the pressure feedback loop in Pa (section 3.3: 100 bar empty, 200 bar full).
+    sources : tuple of (str, str)
+        Source or reason of each value by dotted path (see :meth:`source`).
+    """
+
+    mass: float = field(metadata=si("kg", POSITIVE))
+    cog: Point = field(metadata=si("m", shape=2))
+    inertia: float = field(metadata=si("kg m^2", POSITIVE))
+    pressure_normalisation: float = field(metadata=si("Pa", POSITIVE))
+    sources: tuple[tuple[str, str], ...] = sources_field()
+
+
+@dataclass(frozen=True)
+class AxleTyre:
+    """Linear tyre spring-damper of one axle, left and right tyres lumped (Eq. 1-4).
+
+    Attributes
+    ----------
+    k_x, k_y : float
+        Longitudinal and vertical stiffness in N/m.
+    c_x, c_y : float
+        Longitudinal and vertical damping in N·s/m.
+    """
+
+    k_x: float = field(metadata=si("N/m", POSITIVE))
+    k_y: float = field(metadata=si("N/m", POSITIVE))
+    c_x: float = field(metadata=si("N s/m", NONNEGATIVE))
+    c_y: float = field(metadata=si("N s/m", NONNEGATIVE))
+
+
+@dataclass(frozen=True)
+class TyreParameters:
+    """Tyres of the front axle (point A) and of the rear axle (point B)."""
+
+    front: AxleTyre
+    rear: AxleTyre
+
+
+@dataclass(frozen=True)
+class EnvironmentParameters:
+    """Environment.
+
+    Attributes
+    ----------
+    gravity : float
+        Gravitational acceleration g in m/s².
+    """
+
+    gravity: float = field(metadata=si("m/s^2", POSITIVE))
+
+
+@dataclass(frozen=True)
+class LoaderParameters(Sourced):
+    """The whole loader without its bucket load (see :class:`BucketLoad`).
+
+    One attribute per TOML section; ``sources`` holds the source or reason of each value by
+    dotted path (see :meth:`source`).
+    """
+
+    geometry: Geometry
+    chassis: ChassisParameters
+    boom: BoomParameters
+    tyres: TyreParameters
+    cylinders: CylinderParameters
+    hydraulics: HydraulicParameters
+    leakage: LeakageParameters
+    friction: FrictionParameters
+    pump: PumpParameters
+    controller: ControllerParameters
+    accumulator: AccumulatorParameters
+    environment: EnvironmentParameters
+    sources: tuple[tuple[str, str], ...] = sources_field()

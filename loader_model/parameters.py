@@ -1,0 +1,295 @@
+"""Validated loader parameters: TOML files, updates by dotted path, and the model's values.
+
+The parameter sets are the frozen dataclasses of :mod:`loader_model.parameter_schema` (SI units,
+chassis-frame points at the operating boom angle). A loader file (``default_loader.toml``) holds
+everything but the bucket load, which has one file per load case (``load_empty.toml``,
+``load_full.toml``; section 5.3 of the paper: 340 kg and 770 kg).
+
+Examples
+--------
+>>> from loader_model.parameters import bucket_load, default_loader, model_parameter_values
+>>> values = model_parameter_values(default_loader(), bucket_load("empty"))
+>>> round(values["m_2"] - default_loader().boom.mass, 6)
+340.0
+"""
+
+from __future__ import annotations
+
+import difflib
+import functools
+import itertools
+import math
+import tomllib
+from collections.abc import Mapping, Sequence
+from importlib import resources
+from pathlib import Path
+from typing import Any, TypeVar
+
+from loader_model.parameter_schema import (
+    AccumulatorParameters,
+    AxleTyre,
+    BoomParameters,
+    BucketLoad,
+    ChassisParameters,
+    ControllerParameters,
+    CylinderParameters,
+    EnvironmentParameters,
+    FrictionParameters,
+    Geometry,
+    HydraulicParameters,
+    LeakageParameters,
+    LoaderParameters,
+    Point,
+    PumpParameters,
+    TyreParameters,
+)
+from loader_model.parameter_toml import build, dumps, iter_leaves, leaf_metadata, to_raw
+
+__all__ = [
+    "COINCIDENCE_TOLERANCE_M",
+    "MODEL_PARAMETER_NAMES",
+    "AccumulatorParameters",
+    "AxleTyre",
+    "BoomParameters",
+    "BucketLoad",
+    "ChassisParameters",
+    "ControllerParameters",
+    "CylinderParameters",
+    "EnvironmentParameters",
+    "FrictionParameters",
+    "Geometry",
+    "HydraulicParameters",
+    "LeakageParameters",
+    "LoaderParameters",
+    "PumpParameters",
+    "TyreParameters",
+    "bucket_load",
+    "combine_bodies",
+    "default_loader",
+    "load_bucket_load",
+    "load_loader",
+    "model_parameter_values",
+    "replace",
+    "save",
+    "validate",
+]
+
+#: Two points closer than this are taken as coincident (degenerate geometry), in m.
+COINCIDENCE_TOLERANCE_M = 1e-3
+
+#: Names of the generated model's numeric parameters (the order belongs to ``derive``).
+MODEL_PARAMETER_NAMES = frozenset(
+    "m_1 J_1 m_2 J_2 g A_x A_y B_x B_y C_x C_y D_x D_y S_x S_y N_x N_y E_x E_y G_x G_y "
+    "k_Ax k_Ay c_Ax c_Ay k_Bx k_By c_Bx c_By".split()
+)
+
+_LOAD_CASES = {"empty": "load_empty.toml", "full": "load_full.toml"}
+_HEADERS = {
+    LoaderParameters: "Loader parameters (loader_model.parameter_schema.LoaderParameters).",
+    BucketLoad: "Bucket load case (loader_model.parameter_schema.BucketLoad).",
+}
+_HEADER_FORMAT = (
+    "\nEvery value: { value = <SI number>, unit = <its SI unit, checked on loading>, "
+    'source = "<one-line source or reason>" }.\nPoints are (x, y) in the chassis frame: '
+    "origin H (chassis centre of gravity), x forward, y up, boom at its operating angle."
+)
+
+P = TypeVar("P", LoaderParameters, BucketLoad)
+
+
+def _get(obj: Any, path: str) -> Any:
+    for name in path.split("."):
+        obj = getattr(obj, name)
+    return obj
+
+
+def _distance(p: Point, q: Point) -> float:
+    return math.hypot(p[0] - q[0], p[1] - q[1])
+
+
+def _check_ranges(params: LoaderParameters | BucketLoad) -> None:
+    for path, cls, name in iter_leaves(type(params)):
+        meta = leaf_metadata(cls, name)
+        value = _get(params, path)
+        for item in value if isinstance(value, tuple) else (value,):
+            if not math.isfinite(item):
+                raise ValueError(f"{path} = {value!r} is not finite; allowed: a finite number")
+            if not meta["allowed"].contains(item):
+                raise ValueError(
+                    f"{path} = {value!r} {meta['unit']} is out of range; allowed: {meta['allowed']}"
+                )
+
+
+def _check_distinct(points: Mapping[str, Point]) -> None:
+    """Raise if two of the named points coincide (degenerate geometry)."""
+    for (name_p, p), (name_q, q) in itertools.combinations(points.items(), 2):
+        distance = _distance(p, q)
+        if distance < COINCIDENCE_TOLERANCE_M:
+            raise ValueError(
+                f"degenerate geometry: {name_p} = {p} and {name_q} = {q} coincide "
+                f"(distance {distance:g} m; allowed: >= {COINCIDENCE_TOLERANCE_M:g} m)"
+            )
+
+
+def _check_loader(params: LoaderParameters) -> None:
+    cyl, geo = params.cylinders, params.geometry
+    if cyl.rod_diameter >= cyl.piston_diameter:
+        raise ValueError(
+            f"cylinders.rod_diameter = {cyl.rod_diameter!r} m must be smaller than "
+            f"cylinders.piston_diameter = {cyl.piston_diameter!r} m"
+        )
+    names = ("A", "B", "C", "D", "E")
+    points = {f"geometry.{n}": getattr(geo, n) for n in names} | {"boom.cog": params.boom.cog}
+    _check_distinct(points)
+    if geo.A[0] <= geo.B[0]:
+        raise ValueError(
+            f"geometry.A = {geo.A} must be ahead of geometry.B = {geo.B}; allowed: A_x > B_x "
+            "(A is the front axle)"
+        )
+    length = _distance(geo.E, geo.C)
+    low, high = cyl.retracted_length, cyl.retracted_length + cyl.stroke
+    if not low <= length <= high:
+        raise ValueError(
+            f"geometry.E: cylinder length |E - C| = {length:.6g} m at the operating point is "
+            f"outside [{low:g}, {high:g}] m (cylinders.retracted_length, + cylinders.stroke)"
+        )
+
+
+def validate(params: P) -> P:
+    """Check ranges and consistency of a parameter set; return it unchanged.
+
+    Raises
+    ------
+    ValueError
+        Naming the field by dotted path (``tyres.front.k_y``), the value and the allowed range:
+        non-finite values; non-positive masses, inertias, stiffnesses, bulk modulus, volumes,
+        diameters, lengths; negative damping or friction; rod not thinner than piston; coincident
+        points among A, B, C, D, E and the boom centre of gravity; A not ahead of B; cylinder
+        length |E − C| outside [retracted length, retracted length + stroke].
+    """
+    _check_ranges(params)
+    if isinstance(params, LoaderParameters):
+        _check_loader(params)
+    return params
+
+
+def _parse(cls: type[P], text: str, origin: str) -> P:
+    try:
+        return validate(build(cls, tomllib.loads(text)))
+    except ValueError as exc:
+        raise ValueError(f"{origin}: {exc}") from None
+
+
+def load_loader(path: str | Path) -> LoaderParameters:
+    """Read and validate a loader parameter file (see :func:`save` for the layout)."""
+    return _parse(LoaderParameters, Path(path).read_text(encoding="utf-8"), str(path))
+
+
+def load_bucket_load(path: str | Path) -> BucketLoad:
+    """Read and validate a bucket-load file (one load case)."""
+    return _parse(BucketLoad, Path(path).read_text(encoding="utf-8"), str(path))
+
+
+def save(params: LoaderParameters | BucketLoad, path: str | Path) -> None:
+    """Write a parameter set as TOML; :func:`load_loader` / :func:`load_bucket_load` read it
+    back equal (floats are written with ``repr``)."""
+    header = _HEADERS[type(params)] + _HEADER_FORMAT
+    Path(path).write_text(dumps(to_raw(params), header), encoding="utf-8", newline="\n")
+
+
+def replace(params: P, updates: Mapping[str, Any], source: str | None = None) -> P:
+    """Return a validated copy of ``params`` with values replaced by dotted path.
+
+    Parameters
+    ----------
+    params : LoaderParameters or BucketLoad
+    updates : mapping
+        ``{"tyres.front.k_y": 1.2e6, "geometry.E": (-0.5, 0.7), ...}`` in the field's SI unit.
+    source : str, optional
+        New source/reason of the updated values (e.g. ``"calibrated to Table 1"``); the old
+        source is kept when omitted.
+    """
+    raw = to_raw(params)
+    paths = [path for path, _, _ in iter_leaves(type(params))]
+    for path, value in updates.items():
+        if path not in paths:
+            close = difflib.get_close_matches(path, paths, n=1, cutoff=0.5)
+            hint = f"; did you mean {close[0]!r}?" if close else ""
+            raise ValueError(f"{path}: unknown parameter{hint}")
+        leaf = functools.reduce(lambda node, key: node[key], path.split("."), raw)
+        leaf["value"] = value.tolist() if hasattr(value, "tolist") else value
+        if isinstance(leaf["value"], tuple):
+            leaf["value"] = list(leaf["value"])
+        if source is not None:
+            leaf["source"] = source
+    return validate(build(type(params), raw))
+
+
+def _read_data(name: str) -> str:
+    return resources.files("loader_model").joinpath("data", name).read_text(encoding="utf-8")
+
+
+@functools.cache
+def default_loader() -> LoaderParameters:
+    """The shipped default loader, a plausible 3.5 t skid-steer (``data/default_loader.toml``)."""
+    return _parse(LoaderParameters, _read_data("default_loader.toml"), "default_loader.toml")
+
+
+@functools.cache
+def bucket_load(case: str) -> BucketLoad:
+    """A shipped bucket-load case: ``"empty"`` (340 kg) or ``"full"`` (770 kg, section 5.3)."""
+    if case not in _LOAD_CASES:
+        raise ValueError(f"bucket load case {case!r} is unknown; allowed: {sorted(_LOAD_CASES)}")
+    return _parse(BucketLoad, _read_data(_LOAD_CASES[case]), _LOAD_CASES[case])
+
+
+def combine_bodies(
+    masses: Sequence[float], cogs: Sequence[Point], inertias: Sequence[float]
+) -> tuple[float, Point, float]:
+    r"""Combine rigid bodies of one planar body into mass, centre of gravity and inertia.
+
+    .. math::
+
+        m = \sum m_i, \quad G = \frac{1}{m}\sum m_i G_i, \quad
+        J_G = \sum \left(J_i + m_i \lVert G_i - G \rVert^2\right)
+
+    (parallel-axis theorem; ``J_i`` about each body's own centre of gravity ``G_i``).
+    """
+    mass = math.fsum(masses)
+    gx = math.fsum(m * g[0] for m, g in zip(masses, cogs, strict=True)) / mass
+    gy = math.fsum(m * g[1] for m, g in zip(masses, cogs, strict=True)) / mass
+    inertia = math.fsum(
+        j + m * ((g[0] - gx) ** 2 + (g[1] - gy) ** 2)
+        for m, g, j in zip(masses, cogs, inertias, strict=True)
+    )
+    return mass, (gx, gy), inertia
+
+
+def model_parameter_values(loader: LoaderParameters, load: BucketLoad) -> dict[str, float]:
+    """Numeric values of the generated model's parameters, keyed by name.
+
+    Body 1 is the chassis (m_1, J_1 about H); body 2 is the boom with the bucket load (m_2, J_2
+    about the combined centre of gravity G by :func:`combine_bodies`). Points are chassis-frame
+    coordinates at the operating angle; ``k_A*``, ``c_A*`` / ``k_B*``, ``c_B*`` are the front /
+    rear axle tyres (Eq. 1-4). The static tyre loads are computed elsewhere from the equilibrium.
+    The order of the generated function's inputs belongs to ``derive``; use the names.
+
+    Raises
+    ------
+    ValueError
+        If the combined centre of gravity G coincides with A, B, C, D or E.
+    """
+    boom, geo = loader.boom, loader.geometry
+    m_2, cog, j_2 = combine_bodies(
+        (boom.mass, load.mass), (boom.cog, load.cog), (boom.inertia, load.inertia)
+    )
+    points = {name: getattr(geo, name) for name in ("A", "B", "C", "D", "S", "N", "E")}
+    _check_distinct({f"geometry.{n}": points[n] for n in "ABCDE"} | {"combined G": cog})
+    values = {"m_1": loader.chassis.mass, "J_1": loader.chassis.inertia, "m_2": m_2, "J_2": j_2}
+    values["g"] = loader.environment.gravity
+    for name, (x, y) in (points | {"G": cog}).items():
+        values[f"{name}_x"], values[f"{name}_y"] = x, y
+    for axle, tyre in (("A", loader.tyres.front), ("B", loader.tyres.rear)):
+        for kind in ("k_x", "k_y", "c_x", "c_y"):
+            values[f"{kind[0]}_{axle}{kind[2]}"] = getattr(tyre, kind)
+    return {name: float(value) for name, value in values.items()}

@@ -1,0 +1,46 @@
+"""Shared fixtures: a loader in the paper's sign layout (DESIGN.md errata 2)."""
+
+from __future__ import annotations
+
+import pytest
+
+#: A plausible 3.5 t skid-steer whose points follow the layout the paper's signs assume:
+#: A ahead of and below H, B behind and below H, C and D behind and above H, G ahead of and
+#: below D, E behind and above G. Not the calibrated default loader; a fixed test case.
+PAPER_LAYOUT = {
+    "m_1": 2700.0,
+    "J_1": 1800.0,
+    "m_2": 800.0,
+    "J_2": 450.0,
+    "g": 9.81,
+    "A_x": 0.55,
+    "A_y": -0.30,
+    "B_x": -0.62,
+    "B_y": -0.28,
+    "C_x": -0.70,
+    "C_y": 0.20,
+    "D_x": -0.85,
+    "D_y": 0.95,
+    "S_x": -0.35,
+    "S_y": 0.55,
+    "N_x": 0.80,
+    "N_y": 0.10,
+    "E_x": 0.20,
+    "E_y": 0.75,
+    "G_x": 0.90,
+    "G_y": 0.35,
+    "k_Ax": 3.0e5,
+    "k_Ay": 6.0e5,
+    "c_Ax": 2.0e3,
+    "c_Ay": 3.0e3,
+    "k_Bx": 3.2e5,
+    "k_By": 6.5e5,
+    "c_Bx": 2.1e3,
+    "c_By": 3.2e3,
+}
+
+
+@pytest.fixture
+def paper_layout() -> dict[str, float]:
+    """Parameter values of a loader in the paper's sign layout (static loads left out)."""
+    return dict(PAPER_LAYOUT)

@@ -1,0 +1,58 @@
+"""generated/ is what derive/ produces: a fast hash check and a full byte-for-byte regeneration."""
+
+from __future__ import annotations
+
+import difflib
+from pathlib import Path
+
+import pytest
+
+import loader_model_generated
+from derive.input_hash import input_hash
+
+GENERATED_DIR = Path(loader_model_generated.__file__).resolve().parent
+HINT = "generated/ is stale: run `make regenerate` and commit the result"
+
+
+def test_input_hash_matches_derive_sources() -> None:
+    assert loader_model_generated.INPUT_HASH == input_hash(), HINT
+
+
+def test_every_generated_file_carries_header_and_hash() -> None:
+    files = sorted(GENERATED_DIR.glob("*.py"))
+    assert len(files) == len(loader_model_generated.FUNCTION_NAMES) + 1
+    for path in files:
+        head = path.read_text(encoding="utf-8").splitlines()[:4]
+        assert "Do NOT modify by hand" in head[0], path.name
+        assert head[2] == f"# Input hash: {input_hash()}", f"{path.name}: {HINT}"
+        assert head[3].startswith("# Total ops: "), path.name
+
+
+def test_regeneration_reproduces_generated_bytes(tmp_path: Path) -> None:
+    """The SymForce pattern: regenerate into a temporary folder and compare files and bytes."""
+    pytest.importorskip("sympy")
+    from derive.generate import generate
+
+    fresh = tmp_path / "generated"
+    generate(fresh)
+    checked_in = {p.name for p in GENERATED_DIR.glob("*.py")}
+    regenerated = {p.name for p in fresh.glob("*.py")}
+    assert checked_in == regenerated, f"file lists differ; {HINT}"
+    for name in sorted(regenerated):
+        old = (GENERATED_DIR / name).read_text(encoding="utf-8")
+        new = (fresh / name).read_text(encoding="utf-8")
+        if old != new:
+            diff = "".join(
+                difflib.unified_diff(
+                    old.splitlines(keepends=True),
+                    new.splitlines(keepends=True),
+                    f"generated/{name}",
+                    f"regenerated/{name}",
+                )
+            )
+            pytest.fail(f"{HINT}\n{diff[:5000]}")
+
+
+def test_unknown_function_name_is_rejected() -> None:
+    with pytest.raises(ValueError, match="unknown generated function 'nope'; allowed: mass_matrix"):
+        loader_model_generated.function("nope")
