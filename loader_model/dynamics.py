@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -73,6 +74,26 @@ class LinearModel:
             name=name,
         )
 
+    def save(self, path: str | Path) -> Path:
+        """Export A, B, E, C, D_u, D_w and the signal names to ``.npz`` or ``.mat`` (atomic)."""
+        from loader_model.export import save_arrays
+
+        return save_arrays(
+            path,
+            {
+                "A": self.A,
+                "B": self.B,
+                "E": self.E,
+                "C": self.C,
+                "D_u": self.D_u,
+                "D_w": self.D_w,
+                "state_names": list(self.state_names),
+                "input_names": list(self.input_names),
+                "exogenous_names": list(self.exogenous_names),
+                "output_names": list(self.output_names),
+            },
+        )
+
 
 def _dense(value: Any) -> np.ndarray:
     return np.asarray(value.full() if hasattr(value, "full") else value, dtype=float)
@@ -102,7 +123,9 @@ class LoaderDynamics:
         names = set(PARAMETER_NAMES)
         unknown = sorted(set(parameter_values) - names)
         if unknown:
-            raise ValueError(f"unknown model parameters {unknown}; allowed: {list(PARAMETER_NAMES)}")
+            raise ValueError(
+                f"unknown model parameters {unknown}; allowed: {list(PARAMETER_NAMES)}"
+            )
         optional = set(_STATIC_LOADS) if equilibrium else set()
         missing = [n for n in PARAMETER_NAMES if n not in parameter_values and n not in optional]
         if missing:
@@ -118,6 +141,36 @@ class LoaderDynamics:
         self.parameters = vector
         """Parameter vector in the order of :data:`PARAMETER_NAMES`."""
         self._check_mass_matrix()
+
+    @classmethod
+    def from_parameters(cls, loader: Any = None, load: Any = "empty") -> LoaderDynamics:
+        """Model of a loader parameter set with a bucket load.
+
+        Parameters
+        ----------
+        loader
+            A :class:`loader_model.parameters.LoaderParameters`, a path to its TOML file, or
+            None for the default loader.
+        load
+            A :class:`loader_model.parameters.BucketLoad`, a path to its TOML file, or the name of
+            a shipped load case (``"empty"``: 340 kg, ``"full"``: 770 kg, paper section 5.3).
+        """
+        from loader_model import parameters
+
+        if loader is None:
+            loader = parameters.default_loader()
+        elif not isinstance(loader, parameters.LoaderParameters):
+            loader = parameters.load_loader(loader)
+        if isinstance(load, str) and load in parameters.LOAD_CASES:
+            load = parameters.bucket_load(load)
+        elif not isinstance(load, parameters.BucketLoad):
+            if not Path(load).is_file():
+                raise ValueError(
+                    f"load {str(load)!r} is neither a load case {list(parameters.LOAD_CASES)} "
+                    "nor an existing TOML file"
+                )
+            load = parameters.load_bucket_load(load)
+        return cls(parameters.model_parameter_values(loader, load))
 
     def _check_mass_matrix(self) -> None:
         mass = self.mass_matrix(np.zeros(4))

@@ -47,6 +47,7 @@ from loader_model.parameter_toml import build, dumps, iter_leaves, leaf_metadata
 
 __all__ = [
     "COINCIDENCE_TOLERANCE_M",
+    "LOAD_CASES",
     "MODEL_PARAMETER_NAMES",
     "AccumulatorParameters",
     "AxleTyre",
@@ -84,6 +85,8 @@ MODEL_PARAMETER_NAMES = frozenset(
 )
 
 _LOAD_CASES = {"empty": "load_empty.toml", "full": "load_full.toml"}
+#: Names of the shipped bucket-load cases (paper section 5.3: 340 kg and 770 kg).
+LOAD_CASES: tuple[str, ...] = tuple(_LOAD_CASES)
 _HEADERS = {
     LoaderParameters: "Loader parameters (loader_model.parameter_schema.LoaderParameters).",
     BucketLoad: "Bucket load case (loader_model.parameter_schema.BucketLoad).",

@@ -1,0 +1,32 @@
+"""Print the model at its static equilibrium: loads, M, K, linear modes; export the linear model."""
+
+from __future__ import annotations
+
+import argparse
+
+from loader_model.commands.common import add_model_arguments, model_from_arguments
+
+HELP = "print the model at the static equilibrium and export its linear model"
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_model_arguments(parser)
+    parser.add_argument(
+        "--export",
+        metavar="FILE",
+        help="write A, B, E, C, D_u, D_w and the signal names to FILE.npz or FILE.mat",
+    )
+
+
+def run(args: argparse.Namespace) -> int:
+    import numpy as np
+
+    from loader_model.report import model_summary
+
+    model = model_from_arguments(args)
+    print(model_summary(model))
+    if args.export:
+        path = model.linearise().save(args.export)
+        print(f"\nwrote the linear model to {path}")
+    np.set_printoptions()
+    return 0
