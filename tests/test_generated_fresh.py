@@ -56,3 +56,21 @@ def test_regeneration_reproduces_generated_bytes(tmp_path: Path) -> None:
 def test_unknown_function_name_is_rejected() -> None:
     with pytest.raises(ValueError, match="unknown generated function 'nope'; allowed: mass_matrix"):
         loader_model_generated.function("nope")
+
+
+@pytest.mark.slow
+def test_regeneration_is_deterministic_across_hash_seeds(tmp_path: Path) -> None:
+    """Two runs in fresh interpreters with different PYTHONHASHSEED give identical bytes."""
+    import os
+    import subprocess
+    import sys
+
+    outputs = []
+    for seed in ("0", "4242"):
+        out = tmp_path / f"seed{seed}"
+        env = {**os.environ, "PYTHONHASHSEED": seed}
+        root = Path(__file__).resolve().parents[1]
+        command = [sys.executable, "-m", "derive", "--output", str(out)]
+        subprocess.run(command, cwd=root, env=env, check=True, capture_output=True)
+        outputs.append({p.name: p.read_bytes() for p in sorted(out.glob("*.py"))})
+    assert outputs[0] == outputs[1]
