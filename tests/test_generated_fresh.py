@@ -12,6 +12,7 @@ from derive.input_hash import input_hash
 
 GENERATED_DIR = Path(loader_model_generated.__file__).resolve().parent
 HINT = "generated/ is stale: run `make regenerate` and commit the result"
+NUMERIC_MODELS = "default_linear_models.py"
 
 
 def test_input_hash_matches_derive_sources() -> None:
@@ -20,8 +21,11 @@ def test_input_hash_matches_derive_sources() -> None:
 
 def test_every_generated_file_carries_header_and_hash() -> None:
     files = sorted(GENERATED_DIR.glob("*.py"))
-    assert len(files) == len(loader_model_generated.FUNCTION_NAMES) + 1
+    # one file per function, the package index and the default loader's numeric linear models
+    assert len(files) == len(loader_model_generated.FUNCTION_NAMES) + 2
     for path in files:
+        if path.name == NUMERIC_MODELS:
+            continue
         head = path.read_text(encoding="utf-8").splitlines()[:4]
         assert "Do NOT modify by hand" in head[0], path.name
         assert head[2] == f"# Input hash: {input_hash()}", f"{path.name}: {HINT}"
@@ -35,7 +39,7 @@ def test_regeneration_reproduces_generated_bytes(tmp_path: Path) -> None:
 
     fresh = tmp_path / "generated"
     generate(fresh)
-    checked_in = {p.name for p in GENERATED_DIR.glob("*.py")}
+    checked_in = {p.name for p in GENERATED_DIR.glob("*.py")} - {NUMERIC_MODELS}
     regenerated = {p.name for p in fresh.glob("*.py")}
     assert checked_in == regenerated, f"file lists differ; {HINT}"
     for name in sorted(regenerated):
@@ -74,3 +78,28 @@ def test_regeneration_is_deterministic_across_hash_seeds(tmp_path: Path) -> None
         subprocess.run(command, cwd=root, env=env, check=True, capture_output=True)
         outputs.append({p.name: p.read_bytes() for p in sorted(out.glob("*.py"))})
     assert outputs[0] == outputs[1]
+
+
+def test_numeric_linear_models_of_default_loader_are_fresh() -> None:
+    """The checked-in numeric models match the current parameter files and generated code
+    (compared as numbers to 1e-10 relative: the file prints 12 significant digits)."""
+    import numpy as np
+
+    from derive.numeric_models import parameter_files_hash, render_numeric_models
+    from loader_model_generated import default_linear_models as checked_in
+
+    assert checked_in.PARAMETER_FILES_HASH == parameter_files_hash(), HINT
+    assert checked_in.INPUT_HASH == input_hash(), HINT
+    namespace: dict = {}
+    exec(render_numeric_models(input_hash()), namespace)
+    fresh = namespace["LINEAR_MODELS"]
+    assert fresh.keys() == checked_in.LINEAR_MODELS.keys(), HINT
+    for case, matrices in fresh.items():
+        for name, value in matrices.items():
+            old = checked_in.LINEAR_MODELS[case][name]
+            if isinstance(value, dict):
+                old, value = list(old.values()), list(value.values())
+            scale = max(np.abs(np.asarray(value)).max(), 1.0)
+            np.testing.assert_allclose(
+                old, value, rtol=1e-10, atol=1e-10 * scale, err_msg=f"{case} {name}: {HINT}"
+            )
