@@ -14,6 +14,7 @@ from collections.abc import Sequence
 #: Subcommand name -> module in ``loader_model.commands``.
 COMMANDS: dict[str, str] = {
     "model": "loader_model.commands.model_command",
+    "iso2631": "loader_model.commands.iso2631_command",
     "reproduce": "loader_model.commands.reproduce_command",
 }
 
