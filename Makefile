@@ -4,7 +4,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: setup regenerate lint test test-slow bench reproduce clean
+.PHONY: setup regenerate calibrate lint test test-slow bench reproduce clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -16,6 +16,11 @@ setup: $(STAMP)
 ## regenerate: derive the model with SymPy and rewrite generated/ (deterministic)
 regenerate: setup
 	$(PY) -m derive --output generated
+
+## calibrate: fit the default loader to the paper's Table 1, rewrite its TOML, then regenerate
+calibrate: setup
+	$(VENV)/bin/loader-model calibrate --output loader_model/data/default_loader.toml
+	$(MAKE) regenerate
 
 ## lint: ruff check and format check over the whole tree
 lint: setup

@@ -14,6 +14,8 @@ from collections.abc import Sequence
 #: Subcommand name -> module in ``loader_model.commands``.
 COMMANDS: dict[str, str] = {
     "model": "loader_model.commands.model_command",
+    "modes": "loader_model.commands.modes_command",
+    "calibrate": "loader_model.commands.calibrate_command",
     "iso2631": "loader_model.commands.iso2631_command",
     "reproduce": "loader_model.commands.reproduce_command",
 }
@@ -40,6 +42,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(argv)
     try:
         return int(args._run(args))
+    except BrokenPipeError:  # output piped into e.g. `head`, which closed early
+        sys.stderr.close()
+        return 0
     except (ValueError, FileNotFoundError) as error:
         print(f"loader-model {args.command}: error: {error}", file=sys.stderr)
         return 2

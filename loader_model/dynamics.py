@@ -157,19 +157,7 @@ class LoaderDynamics:
         """
         from loader_model import parameters
 
-        if loader is None:
-            loader = parameters.default_loader()
-        elif not isinstance(loader, parameters.LoaderParameters):
-            loader = parameters.load_loader(loader)
-        if isinstance(load, str) and load in parameters.LOAD_CASES:
-            load = parameters.bucket_load(load)
-        elif not isinstance(load, parameters.BucketLoad):
-            if not Path(load).is_file():
-                raise ValueError(
-                    f"load {str(load)!r} is neither a load case {list(parameters.LOAD_CASES)} "
-                    "nor an existing TOML file"
-                )
-            load = parameters.load_bucket_load(load)
+        loader, load = parameters.resolve_loader_and_load(loader, load)
         return cls(parameters.model_parameter_values(loader, load))
 
     def _check_mass_matrix(self) -> None:

@@ -71,6 +71,7 @@ __all__ = [
     "load_loader",
     "model_parameter_values",
     "replace",
+    "resolve_loader_and_load",
     "save",
     "validate",
 ]
@@ -296,3 +297,29 @@ def model_parameter_values(loader: LoaderParameters, load: BucketLoad) -> dict[s
         for kind in ("k_x", "k_y", "c_x", "c_y"):
             values[f"{kind[0]}_{axle}{kind[2]}"] = getattr(tyre, kind)
     return {name: float(value) for name, value in values.items()}
+
+
+def resolve_loader_and_load(
+    loader: LoaderParameters | str | Path | None = None, load: BucketLoad | str | Path = "empty"
+) -> tuple[LoaderParameters, BucketLoad]:
+    """Resolve a loader and a bucket load given as objects, TOML paths or defaults.
+
+    ``loader`` None is the shipped default loader; ``load`` may name a shipped case
+    (:data:`LOAD_CASES`: ``"empty"`` 340 kg, ``"full"`` 770 kg, section 5.3).
+    """
+    if loader is None:
+        loader = default_loader()
+    elif not isinstance(loader, LoaderParameters):
+        if not Path(loader).is_file():
+            raise ValueError(f"loader parameter file {str(loader)!r} does not exist")
+        loader = load_loader(loader)
+    if isinstance(load, str) and load in LOAD_CASES:
+        load = bucket_load(load)
+    elif not isinstance(load, BucketLoad):
+        if not Path(load).is_file():
+            raise ValueError(
+                f"load {str(load)!r} is neither a load case {list(LOAD_CASES)} "
+                "nor an existing TOML file"
+            )
+        load = load_bucket_load(load)
+    return loader, load

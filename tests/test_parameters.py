@@ -48,8 +48,13 @@ def test_every_value_has_a_source_and_calibrated_ones_say_so() -> None:
     loader = default_loader()
     assert all(text.strip() for _, text in loader.sources)
     assert len(loader.sources) == 56
-    for path in ("chassis.mass", "chassis.inertia", "boom.inertia", "tyres.rear.k_y"):
-        assert "placeholder until calibration" in loader.source(path)
+    from loader_model.table1_calibration import FREE_PARAMETERS
+
+    calibrated = {path for item in FREE_PARAMETERS.values() for path in item.paths}
+    assert len(calibrated) == 7
+    for path in calibrated:
+        assert "calibrated to Table 1 by `loader-model calibrate`" in loader.source(path)
+    assert not [path for path, text in loader.sources if "placeholder" in text]
     with pytest.raises(KeyError):
         loader.source("chassis.weight")
 
@@ -114,7 +119,7 @@ def test_replace_updates_values_and_sources() -> None:
     marked = replace(loader, {"chassis.mass": 2800}, source="calibrated to Table 1")
     assert marked.chassis.mass == 2800.0 and isinstance(marked.chassis.mass, float)
     assert marked.source("chassis.mass") == "calibrated to Table 1"
-    assert loader.chassis.mass == 2700.0  # the original is untouched
+    assert loader.chassis.mass == default_loader().chassis.mass != 2800.0  # original untouched
 
 
 def test_replace_rejects_unknown_paths_and_bad_values() -> None:
@@ -168,7 +173,7 @@ def test_model_parameter_values_names_and_mapping() -> None:
     for name in "ABCDSNE":
         assert (values[f"{name}_x"], values[f"{name}_y"]) == getattr(geo, name)
     assert values["m_1"] == loader.chassis.mass and values["J_1"] == loader.chassis.inertia
-    assert values["m_2"] == pytest.approx(460.0 + 340.0, rel=1e-15)
+    assert values["m_2"] == pytest.approx(loader.boom.mass + 340.0, rel=1e-15)
     assert values["g"] == 9.81
 
 
