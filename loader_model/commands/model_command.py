@@ -19,8 +19,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    import numpy as np
-
     from loader_model.report import model_summary
 
     model = model_from_arguments(args)
@@ -28,5 +26,4 @@ def run(args: argparse.Namespace) -> int:
     if args.export:
         path = model.linearise().save(args.export)
         print(f"\nwrote the linear model to {path}")
-    np.set_printoptions()
     return 0
