@@ -18,7 +18,7 @@ __all__ = ["CasadiPrinter", "FunctionSpec", "InputSpec", "OutputSpec", "emit_fun
 
 _CASADI_FUNCTIONS = {
     name: f"ca.{name}" for name in ("sin", "cos", "tan", "atan2", "exp", "log", "tanh", "sqrt")
-}
+} | {"Abs": "ca.fabs"}
 
 
 class CasadiPrinter(PythonCodePrinter):
@@ -43,6 +43,22 @@ class CasadiPrinter(PythonCodePrinter):
         out = args[0]
         for arg in args[1:]:
             out = f"ca.fmax({out}, {arg})"
+        return out
+
+    def _print_And(self, expr: sp.And) -> str:
+        return self._nary("ca.logic_and", expr)
+
+    def _print_Or(self, expr: sp.Or) -> str:
+        return self._nary("ca.logic_or", expr)
+
+    def _print_Not(self, expr: sp.Not) -> str:
+        return f"ca.logic_not({self._print(expr.args[0])})"
+
+    def _nary(self, function: str, expr: sp.Expr) -> str:
+        args = sorted(self._print(arg) for arg in expr.args)
+        out = args[0]
+        for arg in args[1:]:
+            out = f"{function}({out}, {arg})"
         return out
 
     def _print_Piecewise(self, expr: sp.Piecewise) -> str:

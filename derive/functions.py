@@ -7,6 +7,7 @@ import sympy as sp
 from derive.codegen import FunctionSpec, InputSpec, OutputSpec
 from derive.mechanics import LoaderMechanics
 from derive.symbols import (
+    ANCHORS,
     COORDINATE_ACCELERATIONS,
     COORDINATE_RATES,
     COORDINATES,
@@ -25,6 +26,9 @@ _P = InputSpec(
 )
 _PD = InputSpec("pd", tuple(COORDINATE_RATES), "rates of p [m/s, m/s, rad/s, rad/s]")
 _PDD = InputSpec("pdd", tuple(COORDINATE_ACCELERATIONS), "accelerations of p [m/s², rad/s²]")
+_XI = InputSpec(
+    "anchor", tuple(ANCHORS), "horizontal anchors (ξ_A, ξ_B) of the tyre contact points [m]"
+)
 _F = InputSpec("F_act", (FORCE,), "total lift-cylinder force along C -> E [N] (Eq. 31)")
 _W = InputSpec("road", tuple(ROAD), "road displacement (w_Ax, w_Ay, w_Bx, w_By) under A, B [m]")
 _WD = InputSpec("road_rate", tuple(ROAD_RATES), "rate of the road displacement [m/s]")
@@ -36,7 +40,8 @@ _PAR = InputSpec(
 )
 
 #: Outputs of the linear model: Eq. 40, then accelerations at H, at N and at the seat S (world
-#: frame) and the pitch acceleration of the chassis.
+#: frame, kinematic), the pitch acceleration of the chassis, and the specific forces that
+#: chassis-fixed accelerometers at H, N and S read (chassis frame, gravity included).
 OUTPUT_NAMES = (
     "xd_H",
     "yd_H",
@@ -48,14 +53,29 @@ OUTPUT_NAMES = (
     "a_Sx",
     "a_Sy",
     "thetadd_1",
+    "f_Hx",
+    "f_Hy",
+    "f_Ny",
+    "f_Sx",
+    "f_Sy",
 )
 
 
 def _outputs(mech: LoaderMechanics) -> sp.Matrix:
     pd, pdd = COORDINATE_RATES, COORDINATE_ACCELERATIONS
     a_h, a_n, a_s = (mech.accelerations[k] for k in "HNS")
+    f_h, f_n, f_s = (mech.specific_forces[k] for k in "HNS")
     phi = COORDINATES[3] - COORDINATES[2]
-    return sp.Matrix([pd[0], pd[1], pd[2], phi, a_h[0], a_h[1], a_n[1], a_s[0], a_s[1], pdd[2]])
+    kinematic = [pd[0], pd[1], pd[2], phi, a_h[0], a_h[1], a_n[1], a_s[0], a_s[1], pdd[2]]
+    return sp.Matrix([*kinematic, f_h[0], f_h[1], f_n[1], f_s[0], f_s[1]])
+
+
+def _completed(mech: LoaderMechanics) -> sp.Matrix:
+    """The parameter vector with F_Ay0 and F_By0 replaced by the static equilibrium's loads."""
+    entries = []
+    for item in PARAMETERS:
+        entries.append(mech.static_loads.get(item.name, parameter_symbol(item.name)))
+    return sp.Matrix(entries)
 
 
 def function_specs(mech: LoaderMechanics) -> list[FunctionSpec]:
@@ -136,17 +156,33 @@ def function_specs(mech: LoaderMechanics) -> list[FunctionSpec]:
         ),
         FunctionSpec(
             "forward_dynamics",
-            "Forward dynamics p̈ = M⁻¹ (Q_act F_act + Q_g + Q_d + Q_tyre − C) with unilateral tyres.",
-            "A tyre whose linear vertical force (Eq. 1, 4, plus its static load) would pull carries no\n"
-            "force in x or y (lost contact). M is solved numerically inside the CasADi graph.",
-            (_P, _PD, _F, _W, _WD, _DIST, _PAR),
+            "Forward dynamics p̈ = M⁻¹ (Q_act F_act + Q_g + Q_d + Q_tyre − C) and anchor rates ξ̇.",
+            "Tyres follow the contact law of derive.contact: the paper's linear law (Eq. 1-4) while\n"
+            "loaded and sticking, no pulling tyre, horizontal force limited by mu_road F_y, anchors ξ\n"
+            "that slide with the excess force. M is solved numerically inside the CasADi graph.",
+            (_P, _PD, _XI, _F, _W, _WD, _DIST, _PAR),
             (
                 OutputSpec("M", mech.mass_matrix, "(4, 4) mass matrix"),
                 OutputSpec("rhs", rhs_contact, "(4,) right-hand side"),
+                OutputSpec("anchor_rate", mech.anchor_rates, "(2,) anchor rates ξ̇ [m/s]"),
             ),
             epilogue="    pdd = ca.solve(M, rhs)",
             extra_outputs=(("pdd", "(4,) accelerations p̈ [m/s², m/s², rad/s², rad/s²]"),),
-            return_names=("pdd",),
+            return_names=("pdd", "anchor_rate"),
+        ),
+        FunctionSpec(
+            "tyre_contact",
+            "Road forces on the axles and anchor rates of the tyre contact law (derive.contact).",
+            "F_tyre = (F_Ax, F_Ay, F_Bx, F_By) in the world frame [N]; Q_tyre their generalised\n"
+            "forces J_Aᵀ F_A + J_Bᵀ F_B (right-hand side); ξ̇ the anchor sliding rates.",
+            (_P, _PD, _XI, _W, _WD, _PAR),
+            (
+                OutputSpec("F_tyre", mech.tyre_forces, "(4,) F_Ax, F_Ay, F_Bx, F_By [N]"),
+                OutputSpec(
+                    "Q_tyre", mech.contact_tyre_forces, "(4,) generalised forces [N, N, N·m, N·m]"
+                ),
+                OutputSpec("anchor_rate", mech.anchor_rates, "(2,) anchor rates ξ̇ [m/s]"),
+            ),
         ),
         FunctionSpec(
             "point_positions",
@@ -169,6 +205,18 @@ def function_specs(mech: LoaderMechanics) -> list[FunctionSpec]:
             (_P, _PD, _PDD, _PAR),
             tuple(
                 OutputSpec(f"a_{k}", mech.accelerations[k], f"(2,) acceleration of {k} [m/s²]")
+                for k in "HNS"
+            ),
+        ),
+        FunctionSpec(
+            "specific_forces",
+            "Specific force read by chassis-fixed accelerometers at H, N and S (chassis frame).",
+            "f = R(θ1)ᵀ (a + g ŷ): the kinematic acceleration plus the reaction to gravity, resolved\n"
+            "along the chassis axes (x forward, y up). A loader at rest pitched by θ1 reads\n"
+            "(g sin θ1, g cos θ1).",
+            (_P, _PD, _PDD, _PAR),
+            tuple(
+                OutputSpec(f"f_{k}", mech.specific_forces[k], f"(2,) specific force at {k} [m/s²]")
                 for k in "HNS"
             ),
         ),
@@ -201,6 +249,19 @@ def function_specs(mech: LoaderMechanics) -> list[FunctionSpec]:
             tuple(
                 OutputSpec(name, sp.Matrix([mech.static_loads[name]]), "[N]")
                 for name in ("F_Ay0", "F_By0", "F_act0")
+            ),
+        ),
+        FunctionSpec(
+            "complete_parameters",
+            "Parameter vector with the static tyre loads of the static equilibrium, and F_act0.",
+            "Replaces F_Ay0 and F_By0 of ``params`` by the loads that make p = 0 a static\n"
+            "equilibrium (masses, geometry, gravity), so that a CasADi graph of the parameters stays\n"
+            "at rest and differentiates through the equilibrium; F_act0 is the cylinder force that\n"
+            "holds the boom there.",
+            (_PAR,),
+            (
+                OutputSpec("params_static", _completed(mech), "(n_params,) completed parameters"),
+                OutputSpec("F_act0", sp.Matrix([mech.static_loads["F_act0"]]), "[N]"),
             ),
         ),
         FunctionSpec(

@@ -17,6 +17,7 @@ from derive.functions import OUTPUT_NAMES, function_specs
 from derive.input_hash import SYMPY_VERSION, input_hash
 from derive.mechanics import derive_mechanics
 from derive.symbols import (
+    ANCHORS,
     COORDINATE_RATES,
     COORDINATES,
     DISTURBANCES,
@@ -113,6 +114,7 @@ from functools import cache
 from typing import Any
 
 __all__ = [
+    "ANCHOR_NAMES",
     "COORDINATE_NAMES",
     "DISTURBANCE_NAMES",
     "EXOGENOUS_NAMES",
@@ -143,6 +145,8 @@ COORDINATE_NAMES: tuple[str, ...] = {coordinate_names}
 RATE_NAMES: tuple[str, ...] = {rate_names}
 #: State of the linear model (Eq. 39).
 STATE_NAMES: tuple[str, ...] = {state_names}
+#: Horizontal anchors of the tyre contact points (states of the contact law).
+ANCHOR_NAMES: tuple[str, ...] = {anchor_names}
 ROAD_NAMES: tuple[str, ...] = {road_names}
 ROAD_RATE_NAMES: tuple[str, ...] = {road_rate_names}
 DISTURBANCE_NAMES: tuple[str, ...] = {disturbance_names}
@@ -193,6 +197,7 @@ def _render_files() -> dict[str, str]:
         coordinate_names=repr(tuple(symbol.name for symbol in COORDINATES)),
         rate_names=repr(tuple(symbol.name for symbol in COORDINATE_RATES)),
         state_names=repr(_state_names()),
+        anchor_names=repr(tuple(symbol.name for symbol in ANCHORS)),
         road_names=repr(tuple(symbol.name for symbol in ROAD)),
         road_rate_names=repr(tuple(symbol.name for symbol in ROAD_RATES)),
         disturbance_names=repr(tuple(symbol.name for symbol in DISTURBANCES)),

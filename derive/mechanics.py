@@ -30,7 +30,14 @@ from dataclasses import dataclass
 
 import sympy as sp
 
+from derive.contact import (
+    MINIMUM_FRICTION_LIMIT_N,
+    contact_factor,
+    sliding_fraction,
+    unilateral,
+)
 from derive.symbols import (
+    ANCHORS,
     COORDINATE_ACCELERATIONS,
     COORDINATE_RATES,
     COORDINATES,
@@ -73,7 +80,11 @@ class LoaderMechanics:
     tyre_damper_forces: sp.Matrix
     """D(p, ṗ, ẇ): tyre damper forces, Eq. 1-4 and 25 (left-hand side)."""
     contact_tyre_forces: sp.Matrix
-    """Generalised tyre forces (right-hand side) with unilateral contact: no pulling tyre."""
+    """Generalised tyre forces (right-hand side) of the contact law of :mod:`derive.contact`."""
+    tyre_forces: sp.Matrix
+    """(F_Ax, F_Ay, F_Bx, F_By): world-frame forces of the road on each axle, contact law."""
+    anchor_rates: sp.Matrix
+    """(ξ̇_A, ξ̇_B): sliding rates of the tyre anchors (:mod:`derive.contact`)."""
     actuator_map: sp.Matrix
     """Q_act(p) = ∂x_cyl/∂p: generalised force of a unit cylinder force, Eq. 15, 16, 25."""
     disturbance_map: sp.Matrix
@@ -86,6 +97,9 @@ class LoaderMechanics:
     """γ: angle of the line C -> E to the global x axis, Eq. 15-16."""
     accelerations: dict[str, sp.Matrix]
     """World accelerations of points as functions of (p, ṗ, p̈)."""
+    specific_forces: dict[str, sp.Matrix]
+    """Specific force Rᵀ(θ1)(a + g ŷ) in the chassis frame (what a chassis-fixed accelerometer
+    reads) at H, N and S, as functions of (p, ṗ, p̈)."""
     residual: sp.Matrix
     """r = M p̈ + C + K + D − Q_act F_act − Q_g − Q_d with the linear tyre law (zero on motion)."""
     static_loads: dict[str, sp.Expr]
@@ -149,7 +163,10 @@ def derive_mechanics() -> LoaderMechanics:
     springs = sp.zeros(4, 1)
     dampers = sp.zeros(4, 1)
     contact = sp.zeros(4, 1)
-    for axle, offset in (("A", 0), ("B", 2)):
+    tyre_forces: list[sp.Expr] = []
+    anchor_rates: list[sp.Expr] = []
+    mu, width, tau = P("mu_road"), P("F_transition"), P("tau_slip")
+    for index, (axle, offset) in enumerate((("A", 0), ("B", 2))):
         deflection = positions[axle] - _point(axle) - ROAD[offset : offset + 2, 0]
         slip = velocity(axle) - ROAD_RATES[offset : offset + 2, 0]
         k_x, k_y = P(f"k_{axle}x"), P(f"k_{axle}y")
@@ -158,14 +175,17 @@ def derive_mechanics() -> LoaderMechanics:
         damper = sp.Matrix([-c_x * slip[0], -c_y * slip[1]])
         springs -= jacobian(axle).T * spring
         dampers -= jacobian(axle).T * damper
-        linear = spring + damper
-        in_contact = sp.Matrix(
-            [
-                sp.Piecewise((linear[0], linear[1] > 0), (0, True)),
-                sp.Max(linear[1], 0),
-            ]
-        )
-        contact += jacobian(axle).T * in_contact
+        # Contact law of derive.contact: unilateral vertical force; horizontal spring anchored
+        # at ξ with a load-faded damper, the anchor sliding with the fraction σ of the friction
+        # limit's use (and in the air).
+        vertical = unilateral(spring[1] + damper[1], width)
+        limit = mu * vertical + MINIMUM_FRICTION_LIMIT_N
+        stretch = deflection[0] - ANCHORS[index]
+        horizontal = -k_x * stretch - contact_factor(vertical, width) * c_x * slip[0]
+        sliding = sliding_fraction(sp.Abs(horizontal), limit)
+        contact += jacobian(axle).T * sp.Matrix([horizontal, vertical])
+        tyre_forces += [horizontal, vertical]
+        anchor_rates.append(sliding * (slip[0] + stretch / tau))
 
     # The cylinder vector C -> E in the chassis frame depends on φ = θ2 − θ1 only (Eq. 35).
     cylinder = _point("D") - _point("C") + rotation(theta_2 - theta_1) * (_point("E") - _point("D"))
@@ -186,6 +206,7 @@ def derive_mechanics() -> LoaderMechanics:
     )
 
     static_loads = _static_loads(springs, actuator_map, gravity)
+    accelerations = {letter: acceleration(letter) for letter in ("H", "N", "S")}
     return LoaderMechanics(
         positions=positions,
         mass_matrix=mass_matrix,
@@ -194,12 +215,17 @@ def derive_mechanics() -> LoaderMechanics:
         tyre_spring_forces=springs,
         tyre_damper_forces=dampers,
         contact_tyre_forces=contact,
+        tyre_forces=sp.Matrix(tyre_forces),
+        anchor_rates=sp.Matrix(anchor_rates),
         actuator_map=actuator_map,
         disturbance_map=disturbance_map,
         cylinder_length=cylinder_length,
         cylinder_lever=cylinder_lever,
         cylinder_angle=cylinder_angle,
-        accelerations={letter: acceleration(letter) for letter in ("H", "N", "S")},
+        accelerations=accelerations,
+        specific_forces={
+            letter: chassis.T * (accelerations[letter] + g * up) for letter in accelerations
+        },
         residual=residual,
         static_loads=static_loads,
     )

@@ -18,6 +18,7 @@ from dataclasses import dataclass
 import sympy as sp
 
 __all__ = [
+    "ANCHORS",
     "COORDINATES",
     "COORDINATE_ACCELERATIONS",
     "COORDINATE_RATES",
@@ -71,6 +72,13 @@ PARAMETERS: tuple[Parameter, ...] = (
     Parameter("k_By", "N/m", "vertical tyre stiffness at the rear axle B (Eq. 4)"),
     Parameter("c_Bx", "N*s/m", "horizontal tyre damping at the rear axle B (Eq. 3)"),
     Parameter("c_By", "N*s/m", "vertical tyre damping at the rear axle B (Eq. 4)"),
+    Parameter("mu_road", "-", "tyre-road friction coefficient: |F_x| <= mu_road F_y at each axle"),
+    Parameter(
+        "F_transition", "N", "half-width of the smooth vertical contact transition around zero load"
+    ),
+    Parameter(
+        "tau_slip", "s", "relaxation time of a tyre's horizontal anchor when sliding or airborne"
+    ),
     Parameter("F_Ay0", "N", "static vertical tyre load at A (from the static equilibrium)"),
     Parameter("F_By0", "N", "static vertical tyre load at B (from the static equilibrium)"),
 )
@@ -94,6 +102,10 @@ FORCE = sp.Symbol("F_act", real=True)
 #: Road displacement under each axle (the tyre's contact point moves by it) and its rate.
 ROAD = sp.Matrix(sp.symbols("w_Ax w_Ay w_Bx w_By", real=True))
 ROAD_RATES = sp.Matrix(sp.symbols("wd_Ax wd_Ay wd_Bx wd_By", real=True))
+
+#: Horizontal anchors (ξ_A, ξ_B) of the tyre contact points: how far each contact point has slid
+#: along the road since p = 0 [m] (states of the tyre contact law, see derive.contact).
+ANCHORS = sp.Matrix(sp.symbols("xi_A xi_B", real=True))
 
 #: Disturbance forces and moment at H (Eq. 5-7): F_dx, F_dy, M_d.
 DISTURBANCES = sp.Matrix(sp.symbols("F_dx F_dy M_d", real=True))

@@ -132,12 +132,13 @@ class LoaderDynamics:
             raise ValueError(f"missing model parameters {missing}")
         values = {n: finite_scalar(n, parameter_values.get(n, 0.0)) for n in PARAMETER_NAMES}
         vector = np.array([values[n] for n in PARAMETER_NAMES])
-        loads = generated.function("static_equilibrium")(vector)
-        self.static_cylinder_force_N = float(loads[2])
+        # The generated complete_parameters holds the static equilibrium inside the graph, so a
+        # CasADi graph of varied parameters stays at rest the same way (issue 7).
+        completed, force = generated.function("complete_parameters")(vector)
+        self.static_cylinder_force_N = float(force)
         """Cylinder force F_act0 that holds the boom at p = 0 [N]."""
         if equilibrium:
-            for name, load in zip(_STATIC_LOADS, loads[:2], strict=True):
-                vector[PARAMETER_NAMES.index(name)] = float(load)
+            vector = _dense(completed).ravel()
         self.parameters = vector
         """Parameter vector in the order of :data:`PARAMETER_NAMES`."""
         self._check_mass_matrix()
@@ -188,15 +189,54 @@ class LoaderDynamics:
         road_m: Any = (0.0, 0.0, 0.0, 0.0),
         road_rate_m_s: Any = (0.0, 0.0, 0.0, 0.0),
         disturbance: Any = (0.0, 0.0, 0.0),
+        anchor_m: Any = (0.0, 0.0),
     ) -> np.ndarray:
-        """Accelerations p̈ (Eq. 25) with unilateral tyre contact.
+        """Accelerations p̈ (Eq. 25) with the tyre contact law (``derive/contact.py``).
 
         ``force_N`` is the total lift-cylinder force (default: the static force F_act0);
-        ``road_m`` = (w_Ax, w_Ay, w_Bx, w_By); ``disturbance`` = (F_dx, F_dy, M_d) at H.
+        ``road_m`` = (w_Ax, w_Ay, w_Bx, w_By); ``disturbance`` = (F_dx, F_dy, M_d) at H;
+        ``anchor_m`` = (ξ_A, ξ_B), the slid distance of each tyre's contact point.
         """
         force = self.static_cylinder_force_N if force_N is None else force_N
-        args = self._arguments(p, pd, force, road_m, road_rate_m_s, disturbance)
-        return _dense(generated.function("forward_dynamics")(*args)).ravel()
+        p, pd, force, road, road_rate, disturbance, params = self._arguments(
+            p, pd, force, road_m, road_rate_m_s, disturbance
+        )
+        anchor = finite_vector("anchor_m", anchor_m, 2)
+        pdd, _ = generated.function("forward_dynamics")(
+            p, pd, anchor, force, road, road_rate, disturbance, params
+        )
+        return _dense(pdd).ravel()
+
+    def tyre_contact(
+        self,
+        p: Any,
+        pd: Any = (0.0, 0.0, 0.0, 0.0),
+        anchor_m: Any = (0.0, 0.0),
+        road_m: Any = (0.0, 0.0, 0.0, 0.0),
+        road_rate_m_s: Any = (0.0, 0.0, 0.0, 0.0),
+    ) -> dict[str, np.ndarray]:
+        """Road forces on the axles ``F_tyre`` = (F_Ax, F_Ay, F_Bx, F_By) [N] (world frame), their
+        generalised forces ``Q_tyre`` and the anchor rates ``anchor_rate`` [m/s]."""
+        values = generated.function("tyre_contact")(
+            finite_vector("p", p, 4),
+            finite_vector("pd", pd, 4),
+            finite_vector("anchor_m", anchor_m, 2),
+            finite_vector("road_m", road_m, 4),
+            finite_vector("road_rate_m_s", road_rate_m_s, 4),
+            self.parameters,
+        )
+        names = ("F_tyre", "Q_tyre", "anchor_rate")
+        return {name: _dense(v).ravel() for name, v in zip(names, values, strict=True)}
+
+    def specific_forces(self, p: Any, pd: Any, pdd: Any) -> dict[str, np.ndarray]:
+        """What chassis-fixed accelerometers at H, N and S read: R(θ1)ᵀ (a + g ŷ) [m/s²]."""
+        values = generated.function("specific_forces")(
+            finite_vector("p", p, 4),
+            finite_vector("pd", pd, 4),
+            finite_vector("pdd", pdd, 4),
+            self.parameters,
+        )
+        return {k: _dense(v).ravel() for k, v in zip("HNS", values, strict=True)}
 
     def linearise(
         self,

@@ -187,10 +187,28 @@ class AxleTyre:
 
 @dataclass(frozen=True)
 class TyreParameters:
-    """Tyres of the front axle (point A) and of the rear axle (point B)."""
+    """Tyres of the front axle (point A) and of the rear axle (point B), and their contact law.
+
+    The contact law (``derive/contact.py``) is the paper's linear law (Eq. 1-4) while a tyre is
+    loaded and sticks; it lets a tyre lift off (no pulling force, C¹ transition), limits the
+    horizontal force to ``friction_coefficient`` times the vertical load, and lets the contact
+    point slide (anchor state) with the excess force.
+
+    Attributes
+    ----------
+    friction_coefficient : float
+        Tyre-road friction coefficient μ (horizontal force limit μ F_y), dimensionless.
+    contact_transition : float
+        Half-width ε in N of the smooth transition of the vertical force around zero load.
+    slip_relaxation_time : float
+        Relaxation time τ in s of the horizontal anchor when sliding or airborne.
+    """
 
     front: AxleTyre
     rear: AxleTyre
+    friction_coefficient: float = field(metadata=si("-", POSITIVE))
+    contact_transition: float = field(metadata=si("N", POSITIVE))
+    slip_relaxation_time: float = field(metadata=si("s", POSITIVE))
 
 
 @dataclass(frozen=True)

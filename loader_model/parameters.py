@@ -82,7 +82,7 @@ COINCIDENCE_TOLERANCE_M = 1e-3
 #: Names of the generated model's numeric parameters (the order belongs to ``derive``).
 MODEL_PARAMETER_NAMES = frozenset(
     "m_1 J_1 m_2 J_2 g A_x A_y B_x B_y C_x C_y D_x D_y S_x S_y N_x N_y E_x E_y G_x G_y "
-    "k_Ax k_Ay c_Ax c_Ay k_Bx k_By c_Bx c_By".split()
+    "k_Ax k_Ay c_Ax c_Ay k_Bx k_By c_Bx c_By mu_road F_transition tau_slip".split()
 )
 
 _LOAD_CASES = {"empty": "load_empty.toml", "full": "load_full.toml"}
@@ -296,6 +296,9 @@ def model_parameter_values(loader: LoaderParameters, load: BucketLoad) -> dict[s
     for axle, tyre in (("A", loader.tyres.front), ("B", loader.tyres.rear)):
         for kind in ("k_x", "k_y", "c_x", "c_y"):
             values[f"{kind[0]}_{axle}{kind[2]}"] = getattr(tyre, kind)
+    values["mu_road"] = loader.tyres.friction_coefficient
+    values["F_transition"] = loader.tyres.contact_transition
+    values["tau_slip"] = loader.tyres.slip_relaxation_time
     return {name: float(value) for name, value in values.items()}
 
 

@@ -37,6 +37,9 @@ PAPER_LAYOUT = {
     "k_By": 6.5e5,
     "c_Bx": 2.1e3,
     "c_By": 3.2e3,
+    "mu_road": 0.8,
+    "F_transition": 200.0,
+    "tau_slip": 0.01,
 }
 
 

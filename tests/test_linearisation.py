@@ -10,6 +10,7 @@ import loader_model_generated as generated
 from loader_model.dynamics import OUTPUT_NAMES, STATE_NAMES, LoaderDynamics
 
 ACCELERATIONS = generated.function("point_accelerations")
+SPECIFIC_FORCES = generated.function("specific_forces")
 
 
 def _state_derivative(model: LoaderDynamics, x: np.ndarray, u: float, w: np.ndarray) -> np.ndarray:
@@ -24,7 +25,8 @@ def _outputs(model: LoaderDynamics, x: np.ndarray, u: float, w: np.ndarray) -> n
     p, pd = x[0::2], x[1::2]
     pdd = model.forward_dynamics(p, pd, u, w[0:4], w[4:8], w[8:11])
     a_h, a_n, a_s = (np.asarray(a).ravel() for a in ACCELERATIONS(p, pd, pdd, model.parameters))
-    return np.array([*pd[:3], p[3] - p[2], *a_h, a_n[1], *a_s, pdd[2]])
+    f_h, f_n, f_s = (np.asarray(f).ravel() for f in SPECIFIC_FORCES(p, pd, pdd, model.parameters))
+    return np.array([*pd[:3], p[3] - p[2], *a_h, a_n[1], *a_s, pdd[2], *f_h, f_n[1], *f_s])
 
 
 def _central_difference(func, point: np.ndarray, steps: np.ndarray) -> np.ndarray:
@@ -109,9 +111,19 @@ def test_tyre_loses_contact_instead_of_pulling(paper_layout: dict[str, float]) -
     model = LoaderDynamics(paper_layout)
     assert model.parameter("F_Ay0") / paper_layout["k_Ay"] < 0.05
     road_down = (0.01, -0.2, 0.0, 0.0)
-    lifted = model.forward_dynamics(np.zeros(4), np.zeros(4), road_m=road_down)
-    no_front_tyre = dict(paper_layout, k_Ax=0.0, k_Ay=0.0, c_Ax=0.0, c_Ay=0.0, F_Ay0=0.0)
+    # a front tyre far from the ground: no stiffness, a negative preload (below the transition)
+    no_front_tyre = dict(paper_layout, k_Ax=0.0, k_Ay=0.0, c_Ax=0.0, c_Ay=0.0, F_Ay0=-1e3)
     no_front_tyre["F_By0"] = model.parameter("F_By0")
+    # Lifted with a relaxed horizontal spring (anchor where the contact point now is), the front
+    # tyre carries nothing; with a stretched one, its spring relaxes at 1/tau_slip instead.
+    relaxed = (-road_down[0], 0.0)
+    lifted = model.forward_dynamics(np.zeros(4), np.zeros(4), road_m=road_down, anchor_m=relaxed)
+    contact = model.tyre_contact(np.zeros(4), anchor_m=relaxed, road_m=road_down)
+    np.testing.assert_allclose(contact["F_tyre"][:2], [0.0, 0.0], rtol=0, atol=1e-12)
+    stretched = model.tyre_contact(np.zeros(4), road_m=road_down)
+    stretch = -road_down[0]
+    tau = paper_layout["tau_slip"]
+    np.testing.assert_allclose(stretched["anchor_rate"][0], stretch / tau, rtol=1e-12)
     reference = LoaderDynamics(no_front_tyre, equilibrium=False).forward_dynamics(
         np.zeros(4), np.zeros(4), force_N=model.static_cylinder_force_N
     )

@@ -47,7 +47,7 @@ def test_shipped_files_load_and_match_the_paper() -> None:
 def test_every_value_has_a_source_and_calibrated_ones_say_so() -> None:
     loader = default_loader()
     assert all(text.strip() for _, text in loader.sources)
-    assert len(loader.sources) == 56
+    assert len(loader.sources) == 59
     from loader_model.table1_calibration import FREE_PARAMETERS
 
     calibrated = {path for item in FREE_PARAMETERS.values() for path in item.paths}
@@ -164,7 +164,7 @@ def test_model_parameter_values_names_and_mapping() -> None:
         },
     )
     values = model_parameter_values(loader, bucket_load("empty"))
-    assert set(values) == MODEL_PARAMETER_NAMES and len(values) == 29
+    assert set(values) == MODEL_PARAMETER_NAMES and len(values) == 32
     assert all(isinstance(v, float) for v in values.values())
     expected_tyres = {"k_Ax": 1.1e6, "k_Ay": 1.2e6, "c_Ax": 1.3e3, "c_Ay": 1.4e3}
     expected_tyres |= {"k_Bx": 2.1e6, "k_By": 2.2e6, "c_Bx": 2.3e3, "c_By": 2.4e3}

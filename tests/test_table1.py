@@ -18,11 +18,18 @@ def _modes(load_case: str, **kwargs: bool):
     return modal_analysis(matrices.mass, matrices.stiffness)
 
 
-@pytest.mark.parametrize("gravity_stiffness", [True, False])
-def test_default_loader_reproduces_table_1(gravity_stiffness: bool) -> None:
+# What is achieved (empty bucket), so that a regression shows: with gravity (the calibrated
+# model) frequencies within 0.034 % and MAC >= 0.99975; without gravity's stiffness the fourth
+# (boom) mode moves by 0.40 % (measured), the others stay within 0.032 %.
+@pytest.mark.parametrize(
+    ("gravity_stiffness", "frequency_tolerance_percent"), [(True, 0.1), (False, 0.5)]
+)
+def test_default_loader_reproduces_table_1(
+    gravity_stiffness: bool, frequency_tolerance_percent: float
+) -> None:
     comparison = compare_with_table_1(_modes("empty", gravity_stiffness=gravity_stiffness))
-    assert np.all(np.abs(comparison.frequency_errors_percent) <= 1.0)
-    assert np.all(comparison.mac >= 0.99)
+    assert np.all(np.abs(comparison.frequency_errors_percent) <= frequency_tolerance_percent)
+    assert np.all(comparison.mac >= 0.999)
 
 
 def test_table_1_read_literally_does_not_fit() -> None:
