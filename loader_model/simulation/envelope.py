@@ -143,11 +143,9 @@ def effective_road(profile: RoadProfile, distance_m: object, tyre_radius_m: floa
     height = np.empty_like(s_flat)
     slope = np.empty_like(s_flat)
     order = np.argsort(count, kind="stable")  # similar window sizes chunk together
-    start = 0
-    while start < order.size:
-        pairs_per_query = int(count[order[min(start + 1024, order.size) - 1]]) + 2
-        stop = min(order.size, start + max(1024, _CHUNK_PAIRS // pairs_per_query))
-        chunk = order[start:stop]
+    chunk_queries = max(256, _CHUNK_PAIRS // (int(count.max()) + 2))
+    for start in range(0, order.size, chunk_queries):
+        chunk = order[start : start + chunk_queries]
         height[chunk], slope[chunk] = _envelope_chunk(
             s_flat[chunk],
             lo[chunk],
@@ -160,7 +158,6 @@ def effective_road(profile: RoadProfile, distance_m: object, tyre_radius_m: floa
             sloped,
             radius_m,
         )
-        start = stop
     return EffectiveRoad((height - radius_m).reshape(shape), slope.reshape(shape))
 
 

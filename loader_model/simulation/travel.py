@@ -116,6 +116,12 @@ class RoadInput:
         )
 
     def _interpolate(self, table: np.ndarray, time_s: object) -> np.ndarray:
+        if isinstance(time_s, float | int):  # fast path for a simulator's scalar calls
+            position = max(float(time_s) * self.sample_rate_hz, 0.0)
+            index = min(int(position), self.time_s.size - 2)
+            fraction = min(position - index, 1.0)
+            row = table[index]
+            return row + fraction * (table[index + 1] - row)
         position = np.clip(np.asarray(time_s, dtype=float) * self.sample_rate_hz, 0.0, None)
         index = np.minimum(position.astype(np.int64), self.time_s.size - 2)
         fraction = np.minimum(position - index, 1.0)[..., None]
