@@ -11,7 +11,8 @@ w = (w_Ax, w_Ay, w_Bx, w_By) in m, and its rate ẇ in m/s:
 .. math::
 
     w_{iy}(t) = h_\mathrm{eff}(s_i(t)), \qquad \dot w_{iy} = v \tan\beta_i,
-    \qquad w_{ix}(t) = -c_i \tan\beta_i, \qquad c_i = F_{iy0} / k_{ix} .
+    \qquad w_{ix}(t) = -c_i \tan\beta_i, \qquad c_i = F_{iy0} / k_{ix},
+    \qquad \dot w_{ix} = 0 .
 
 The horizontal input follows the effective road plane: the ground force is normal to the wheel-
 centre path, F_x = −F_y tan β (envelope module notes). The generated plant has a horizontal tyre
@@ -30,7 +31,9 @@ x spring: through k_x it would give forces of hundreds of kN.
 
 Table and interpolation: samples on a uniform time grid at ``sample_rate_hz``, exact at the nodes
 (the envelope is computed at each node's axle position), linear in between. ẇ_y is the exact v tan β
-at the nodes; ẇ_x is the central difference of the w_x samples (tan β jumps at first contact).
+at the nodes. ẇ_x is 0: w_x is the static-load equivalent of the road-plane force, not a motion of
+the ground, and its rate would add a spurious damper force c_x ẇ_x (an impulse at each first contact,
+where tan β jumps).
 Between nodes the error is largest where the slope jumps (first contact with an edge, jump Δ): at
 most v Δ / (4 f_s). Measured on the paper's course with R = 0.42 m (Δ = 0.47) at 1 kHz: 0.26 mm at
 9 and 18 km/h (bound 0.29 mm at 9 km/h), 0.52 mm at 17 km/h; at 5 kHz 0.027 mm at 18 km/h.
@@ -74,7 +77,7 @@ class RoadInput:
     road_m : numpy.ndarray
         (N, 4) displacement w = (w_Ax, w_Ay, w_Bx, w_By) in m (:data:`ROAD_NAMES`).
     road_rate_m_s : numpy.ndarray
-        (N, 4) its rate ẇ in m/s.
+        (N, 4) its rate ẇ in m/s (ẇ_x = 0, module notes).
     slope : numpy.ndarray
         (N, 2) effective slope tan β under A and B.
     profile : RoadProfile
@@ -209,17 +212,11 @@ def road_input(
             "one radius tall"
         )
     horizontal_m = -np.asarray(gains_m) * slope
-    horizontal_rate_m_s = np.gradient(horizontal_m, time_s, axis=0)
     road_m = np.column_stack(
         [horizontal_m[:, 0], height_m[:, 0], horizontal_m[:, 1], height_m[:, 1]]
     )
     rate_m_s = np.column_stack(
-        [
-            horizontal_rate_m_s[:, 0],
-            speed_m_s * slope[:, 0],
-            horizontal_rate_m_s[:, 1],
-            speed_m_s * slope[:, 1],
-        ]
+        [np.zeros(count), speed_m_s * slope[:, 0], np.zeros(count), speed_m_s * slope[:, 1]]
     )
     for array in (time_s, road_m, rate_m_s, slope):
         array.setflags(write=False)
