@@ -1,0 +1,88 @@
+"""Roads and courses: what the ground under each axle does during a drive (issue 12, road part).
+
+- :mod:`~loader_model.simulation.roads`: piecewise-linear ground profiles h(s), boards.
+- :mod:`~loader_model.simulation.envelope`: exact rigid-wheel enveloping filter (effective height
+  and slope under an axle) and the horizontal road input it implies.
+- :mod:`~loader_model.simulation.iso8608`: ISO 8608 random roads by class from a seed, PSD check.
+- :mod:`~loader_model.simulation.road_csv`: profiles from and to CSV files with units.
+- :mod:`~loader_model.simulation.travel`: the plant's road input w(t), ẇ(t) per axle as a table.
+- :mod:`~loader_model.simulation.courses`: the paper's course, the Fig. 10 single obstacle.
+- :mod:`~loader_model.simulation.road_plot`: figure of a course (matplotlib, lazily).
+"""
+
+from __future__ import annotations
+
+from loader_model.simulation.courses import (
+    BOARD_HEIGHT_M,
+    BOARD_WIDTH_M,
+    FIG10_SPEED_KMH,
+    LEAD_IN_M,
+    PAPER_BOARD_COUNT,
+    PAPER_SPACING_M,
+    Course,
+    iso8608_course,
+    kmh_to_m_s,
+    paper_course,
+    single_obstacle_course,
+)
+from loader_model.simulation.envelope import EffectiveRoad, edge_contact_length, effective_road
+from loader_model.simulation.iso8608 import (
+    CLASS_PSD_M3,
+    ISO8608_BAND_CYCLES_M,
+    REFERENCE_SPATIAL_FREQUENCY_CYCLES_M,
+    WAVINESS,
+    classify_psd,
+    displacement_psd,
+    estimate_psd,
+    iso8608_profile,
+    profile_variance,
+)
+from loader_model.simulation.road_csv import RoadFileError, read_road_csv, write_road_csv
+from loader_model.simulation.road_plot import plot_course
+from loader_model.simulation.roads import RoadProfile, board_course, flat_road, single_board
+from loader_model.simulation.travel import (
+    DEFAULT_SAMPLE_RATE_HZ,
+    DEFAULT_TYRE_RADIUS_M,
+    ROAD_NAMES,
+    RoadInput,
+    road_input,
+)
+
+__all__ = [
+    "BOARD_HEIGHT_M",
+    "BOARD_WIDTH_M",
+    "CLASS_PSD_M3",
+    "DEFAULT_SAMPLE_RATE_HZ",
+    "DEFAULT_TYRE_RADIUS_M",
+    "FIG10_SPEED_KMH",
+    "ISO8608_BAND_CYCLES_M",
+    "LEAD_IN_M",
+    "PAPER_BOARD_COUNT",
+    "PAPER_SPACING_M",
+    "REFERENCE_SPATIAL_FREQUENCY_CYCLES_M",
+    "ROAD_NAMES",
+    "WAVINESS",
+    "Course",
+    "EffectiveRoad",
+    "RoadFileError",
+    "RoadInput",
+    "RoadProfile",
+    "board_course",
+    "classify_psd",
+    "displacement_psd",
+    "edge_contact_length",
+    "effective_road",
+    "estimate_psd",
+    "flat_road",
+    "iso8608_course",
+    "iso8608_profile",
+    "kmh_to_m_s",
+    "paper_course",
+    "plot_course",
+    "profile_variance",
+    "read_road_csv",
+    "road_input",
+    "single_board",
+    "single_obstacle_course",
+    "write_road_csv",
+]

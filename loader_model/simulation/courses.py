@@ -1,0 +1,194 @@
+"""Courses: a road profile driven at a speed, with the paper's test course and single obstacle.
+
+The paper's course (section 5.3): five wooden boards 4 cm tall on paved concrete, spaced 6 m at
+9 km/h and 9 m at 18 km/h. Its model check (section 2.5, Fig. 10): the free response after a
+single obstacle at 17 km/h.
+
+Assumptions the paper leaves open:
+
+- Board width 140 mm (:data:`BOARD_WIDTH_M`): "4 cm tall" wooden boards are most plausibly North
+  American dimension lumber laid flat (the tests ran at Purdue), whose 2-by sizes are 38 mm thick;
+  the commonest plank, a 2x6, is 140 mm wide (a 2x8 is 184 mm). The height is kept at the paper's
+  40 mm. The width matters little: a rigid 0.42 m wheel rides on each edge for 0.179 m, so the
+  enveloped bump is 0.50 m long with 140 mm and 0.54 m with 184 mm.
+- Spacing is leading edge to leading edge.
+- The single obstacle of Fig. 10 is one board of the course (the paper does not describe it).
+- The front axle starts :data:`LEAD_IN_M` before the first board, and the drive goes on until the
+  rear axle is past the last board and ``settle_s`` more seconds have passed.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+from loader_model.simulation._checks import as_number
+from loader_model.simulation.iso8608 import iso8608_profile
+from loader_model.simulation.roads import RoadProfile, board_course
+from loader_model.simulation.travel import (
+    DEFAULT_SAMPLE_RATE_HZ,
+    DEFAULT_TYRE_RADIUS_M,
+    RoadInput,
+    road_input,
+)
+
+__all__ = [
+    "BOARD_HEIGHT_M",
+    "BOARD_WIDTH_M",
+    "FIG10_SPEED_KMH",
+    "LEAD_IN_M",
+    "PAPER_BOARD_COUNT",
+    "PAPER_SPACING_M",
+    "Course",
+    "iso8608_course",
+    "kmh_to_m_s",
+    "paper_course",
+    "single_obstacle_course",
+]
+
+#: Board height of the paper's course in m (section 5.3).
+BOARD_HEIGHT_M = 0.04
+#: Assumed board width in m: a 2x6 plank laid flat (module notes).
+BOARD_WIDTH_M = 0.14
+#: Number of boards of the paper's course.
+PAPER_BOARD_COUNT = 5
+#: Board spacing of the paper's course in m by speed in km/h.
+PAPER_SPACING_M = {9.0: 6.0, 18.0: 9.0}
+#: Speed of the single-obstacle drive of Fig. 10 in km/h.
+FIG10_SPEED_KMH = 17.0
+#: Distance in m from the front axle at t = 0 to the first obstacle.
+LEAD_IN_M = 5.0
+
+
+def kmh_to_m_s(speed_kmh: float) -> float:
+    """Speed in m/s of ``speed_kmh`` km/h."""
+    return as_number(speed_kmh, "speed_kmh", "km/h", minimum=0.0, strict_minimum=True) / 3.6
+
+
+@dataclass(frozen=True)
+class Course:
+    """A profile driven at constant speed from ``start_m`` (front axle at t = 0).
+
+    Attributes
+    ----------
+    profile : RoadProfile
+        Raw ground profile.
+    speed_m_s : float
+        Forward speed in m/s.
+    start_m : float
+        Front-axle distance at t = 0 in m.
+    settle_s : float
+        Time in s the drive continues after the rear axle has passed the profile's last vertex.
+    name : str
+        Label.
+    """
+
+    profile: RoadProfile
+    speed_m_s: float
+    start_m: float
+    settle_s: float
+    name: str
+
+    def duration_s(self, wheelbase_m: float, tyre_radius_m: float = DEFAULT_TYRE_RADIUS_M) -> float:
+        """Drive time in s until the rear axle is R past the last vertex plus ``settle_s``."""
+        past_m = self.profile.end_m + wheelbase_m + tyre_radius_m - self.start_m
+        return max(past_m, 0.0) / self.speed_m_s + self.settle_s
+
+    def road_input(
+        self,
+        wheelbase_m: float,
+        *,
+        tyre_radius_m: float = DEFAULT_TYRE_RADIUS_M,
+        sample_rate_hz: float = DEFAULT_SAMPLE_RATE_HZ,
+        slope_to_x_m: Sequence[float] = (0.0, 0.0),
+    ) -> RoadInput:
+        """The drive's road input table (:func:`~loader_model.simulation.travel.road_input`)."""
+        wheelbase_m = as_number(wheelbase_m, "wheelbase_m", "m", minimum=0.0, maximum=10.0)
+        return road_input(
+            self.profile,
+            speed_m_s=self.speed_m_s,
+            wheelbase_m=wheelbase_m,
+            duration_s=self.duration_s(wheelbase_m, tyre_radius_m),
+            start_m=self.start_m,
+            tyre_radius_m=tyre_radius_m,
+            sample_rate_hz=sample_rate_hz,
+            slope_to_x_m=slope_to_x_m,
+        )
+
+
+def paper_course(
+    speed_kmh: float,
+    *,
+    board_width_m: float = BOARD_WIDTH_M,
+    position_jitter_m: float = 0.0,
+    seed: int = 0,
+    settle_s: float = 3.0,
+) -> Course:
+    """The paper's test course (section 5.3) at 9 or 18 km/h.
+
+    Parameters
+    ----------
+    speed_kmh : float
+        9 (boards 6 m apart) or 18 (9 m apart).
+    board_width_m : float
+        Board width in m (default: the assumed 2x6 plank, module notes).
+    position_jitter_m, seed : float, int
+        Standard deviation in m of a seeded normal shift of each board (boards laid by hand).
+    settle_s : float
+        Seconds driven after the rear axle has left the last board, [0, 60].
+    """
+    if speed_kmh not in PAPER_SPACING_M or isinstance(speed_kmh, bool):
+        raise ValueError(
+            f"speed_kmh must be one of the paper's speeds {tuple(PAPER_SPACING_M)} km/h; "
+            f"got {speed_kmh!r}"
+        )
+    spacing_m = PAPER_SPACING_M[float(speed_kmh)]
+    profile = board_course(
+        PAPER_BOARD_COUNT,
+        height_m=BOARD_HEIGHT_M,
+        width_m=board_width_m,
+        spacing_m=spacing_m,
+        first_board_m=0.0,
+        position_jitter_m=position_jitter_m,
+        seed=seed,
+        name=f"paper course, {speed_kmh:g} km/h: 5 boards 40 mm, {spacing_m:g} m apart",
+    )
+    settle_s = as_number(settle_s, "settle_s", "s", minimum=0.0, maximum=60.0)
+    return Course(profile, kmh_to_m_s(speed_kmh), -LEAD_IN_M, settle_s, profile.name)
+
+
+def single_obstacle_course(
+    speed_kmh: float = FIG10_SPEED_KMH,
+    *,
+    height_m: float = BOARD_HEIGHT_M,
+    width_m: float = BOARD_WIDTH_M,
+    settle_s: float = 8.0,
+) -> Course:
+    """One board driven at ``speed_kmh`` (Fig. 10: 17 km/h), long enough for a free response."""
+    profile = board_course(
+        1, height_m=height_m, width_m=width_m, spacing_m=0.0, name="single obstacle"
+    )
+    settle_s = as_number(settle_s, "settle_s", "s", minimum=0.0, maximum=600.0)
+    speed_m_s = kmh_to_m_s(
+        as_number(speed_kmh, "speed_kmh", "km/h", minimum=0.0, maximum=100.0, strict_minimum=True)
+    )
+    name = f"single obstacle {height_m * 1e3:g} mm at {speed_kmh:g} km/h"
+    return Course(profile, speed_m_s, -LEAD_IN_M, settle_s, name)
+
+
+def iso8608_course(
+    road_class: str,
+    speed_kmh: float,
+    *,
+    length_m: float = 200.0,
+    seed: int = 0,
+    settle_s: float = 0.0,
+) -> Course:
+    """An ISO 8608 random road of ``road_class`` and ``length_m`` driven at ``speed_kmh``."""
+    profile = iso8608_profile(road_class, length_m, seed=seed)
+    speed_m_s = kmh_to_m_s(
+        as_number(speed_kmh, "speed_kmh", "km/h", minimum=0.0, maximum=100.0, strict_minimum=True)
+    )
+    settle_s = as_number(settle_s, "settle_s", "s", minimum=0.0, maximum=600.0)
+    name = f"{profile.name} at {speed_kmh:g} km/h"
+    return Course(profile, speed_m_s, -LEAD_IN_M, settle_s, name)
