@@ -38,6 +38,8 @@ class CylinderParameters:
         Pin-to-pin length at the retracted end stop in m.
     dead_volume_a, dead_volume_b : float
         Dead (line) volume of the piston side and of the rod side, per cylinder, in m³.
+    end_stop_stiffness, end_stop_damping : float
+        Stiffness in N/m and damping in N·s/m of the stroke's end stops, per cylinder.
     """
 
     count: int = field(metadata=integer())
@@ -47,6 +49,8 @@ class CylinderParameters:
     retracted_length: float = field(metadata=si("m", POSITIVE))
     dead_volume_a: float = field(metadata=si("m^3", POSITIVE))
     dead_volume_b: float = field(metadata=si("m^3", POSITIVE))
+    end_stop_stiffness: float = field(metadata=si("N/m", POSITIVE))
+    end_stop_damping: float = field(metadata=si("N s/m", NONNEGATIVE))
 
     @property
     def piston_area(self) -> float:
@@ -73,11 +77,27 @@ class HydraulicParameters:
     bulk_modulus : float
         Effective bulk modulus K_oil in Pa (Eq. 28, 36, 37; Table 5).
     charge_pressure : float
-        Charge-line pressure in Pa feeding the rod side (sections 2.4, 3.2).
+        Charge-line pressure in Pa (gauge) feeding the rod side (sections 2.4, 3.2).
+    oil_density : float
+        Oil density in kg/m³ (orifice law of the accumulator).
+    charge_conductance : float
+        Conductance in m³/(s·Pa) of the low-side valve that ties the rod side to the charge line.
+    check_valve_conductance : float
+        Conductance in m³/(s·Pa) of the piston side's anti-cavitation check valve (open when
+        p_A falls below the charge pressure).
+    relief_pressure : float
+        Setting in Pa (gauge) of the piston side's pressure relief valve.
+    relief_conductance : float
+        Conductance in m³/(s·Pa) of the relief valve above its setting.
     """
 
     bulk_modulus: float = field(metadata=si("Pa", POSITIVE))
     charge_pressure: float = field(metadata=si("Pa", POSITIVE))
+    oil_density: float = field(metadata=si("kg/m^3", POSITIVE))
+    charge_conductance: float = field(metadata=si("m^3/(s Pa)", POSITIVE))
+    check_valve_conductance: float = field(metadata=si("m^3/(s Pa)", POSITIVE))
+    relief_pressure: float = field(metadata=si("Pa", POSITIVE))
+    relief_conductance: float = field(metadata=si("m^3/(s Pa)", POSITIVE))
 
 
 @dataclass(frozen=True)
@@ -198,6 +218,8 @@ class AccumulatorParameters:
         Damping orifice diameter in m.
     discharge_coefficient : float
         Orifice discharge coefficient C_d in (0, 1].
+    laminar_transition_pressure : float
+        Pressure drop in Pa around which the orifice flow turns from laminar to turbulent.
     """
 
     count: int = field(metadata=integer())
@@ -206,3 +228,4 @@ class AccumulatorParameters:
     polytropic_exponent: float = field(metadata=si("-", Range(1.0, 1.7)))
     orifice_diameter: float = field(metadata=si("m", POSITIVE))
     discharge_coefficient: float = field(metadata=si("-", Range(0.0, 1.0, low_open=True)))
+    laminar_transition_pressure: float = field(metadata=si("Pa", POSITIVE))

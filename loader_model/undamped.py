@@ -1,13 +1,12 @@
 """Undamped mass and stiffness matrices of Eq. 27 for the modal analysis (paper section 2.2).
 
-M is the generated mass matrix at p = 0 (Eq. 32). K has two parts:
-
-* the tyres (and, unless ``gravity_stiffness=False``, the small geometric stiffness of gravity and
-  the static tyre and cylinder loads, which the paper drops): ``K = −M ∂p̈/∂p`` from the generated
-  linearisation with the cylinder force held constant (Eq. 33-34 with DESIGN.md errata 5);
-* the lift cylinders as a hydraulic spring (Eq. 28 with the area ratio, errata 6):
-  ``k_eq (dx_cyl/dφ)²`` on ``[[1, −1], [−1, 1]]`` over (θ1, θ2) (errata 5), with ``dx_cyl/dφ``
-  (Eq. 35) and the chamber volumes at the operating point from the generated kinematics.
+Taken from the plant (one model): :func:`loader_model.plant.linear.undamped_matrices_from_plant`
+linearises the plant Function with the chambers closed as Eq. 28 assumes (pump at zero
+displacement, valves shut, no leakage or friction). M is the generated mass matrix at p = 0
+(Eq. 32); K holds the tyres, the closed oil columns of the lift cylinders (Eq. 28 with the area
+ratio, errata 6: k_eq (dx_cyl/dφ)² on [[1, −1], [−1, 1]] over (θ1, θ2), errata 5) and, unless
+``gravity_stiffness=False``, the small geometric stiffness of gravity and the static loads, which
+the paper drops. ``tests/test_plant_modes.py`` checks K against the closed form of Eq. 28.
 """
 
 from __future__ import annotations
@@ -17,8 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from loader_model.cylinder import hydraulic_stiffness_n_per_m
-from loader_model.dynamics import LoaderDynamics
-from loader_model.parameters import BucketLoad, LoaderParameters, model_parameter_values
+from loader_model.parameters import BucketLoad, LoaderParameters
 
 __all__ = ["UndampedMatrices", "undamped_matrices"]
 
@@ -51,17 +49,58 @@ def undamped_matrices(
         Keep the geometric stiffness of gravity and the static loads (physical); ``False`` drops
         it by setting g = 0, as the paper's Eq. 33-34 do.
     """
-    values = model_parameter_values(loader, load)
+    from loader_model.plant.linear import undamped_matrices_from_plant
+    from loader_model.plant.plant_parameters import (
+        PLANT_PARAMETER_NAMES,
+        PlantOptions,
+        plant_parameter_vector,
+    )
+
+    params = plant_parameter_vector(loader, load, PlantOptions.closed())
+    mass, stiffness, k_eq = undamped_matrices_from_plant(params)
     if not gravity_stiffness:
-        values["g"] = 0.0
-    model = LoaderDynamics(values)
-    mass = model.mass_matrix(np.zeros(4))
-    acceleration = model.linearise().A[np.ix_(_ACCELERATION_ROWS, _POSITION_COLUMNS)]
-    stiffness = -mass @ acceleration
-    cylinder = model.cylinder_kinematics(np.zeros(4))
-    k_eq = hydraulic_stiffness_n_per_m(loader.cylinders, loader.hydraulics, cylinder["x_cyl"])
-    lever = cylinder["dx_cyl_dphi"]
-    stiffness[2:, 2:] += k_eq * lever**2 * np.array([[1.0, -1.0], [-1.0, 1.0]])
-    # the linearised K is symmetric up to round-off (a conservative system at rest)
-    stiffness = 0.5 * (stiffness + stiffness.T)
-    return UndampedMatrices(mass, stiffness, float(k_eq), float(lever))
+        stiffness = stiffness - _gravity_stiffness(params[: len(PLANT_PARAMETER_NAMES)])
+    lever = float(_lever(params))
+    # the closed form of Eq. 28 (errata 6) at the same operating point, as a cross-check
+    x_cyl = loader.cylinders.retracted_length + _piston_position(params)
+    expected = hydraulic_stiffness_n_per_m(loader.cylinders, loader.hydraulics, x_cyl)
+    if not np.isclose(k_eq, expected, rtol=1e-9):
+        raise RuntimeError(f"plant k_eq {k_eq:.6g} N/m differs from Eq. 28: {expected:.6g} N/m")
+    return UndampedMatrices(mass, stiffness, float(k_eq), lever)
+
+
+def _gravity_stiffness(params: np.ndarray) -> np.ndarray:
+    """Geometric stiffness of gravity and the static loads (which the paper drops): the change
+    of −M ∂p̈/∂p of the generated linearisation (linear tyres, constant cylinder force) when g
+    goes to 0. The plant itself cannot drop g: its tyres would lose their static load."""
+    import loader_model_generated as generated
+    from loader_model.dynamics import LoaderDynamics
+
+    names = generated.PARAMETER_NAMES
+    values = dict(zip(names, params[: len(names)], strict=True))
+    rows, columns = [1, 3, 5, 7], [0, 2, 4, 6]
+    stiffness = []
+    for gravity in (values["g"], 0.0):
+        model = LoaderDynamics(values | {"g": gravity})
+        mass = model.mass_matrix(np.zeros(4))
+        stiffness.append(-mass @ model.linearise().A[np.ix_(rows, columns)])
+    difference = stiffness[0] - stiffness[1]
+    return 0.5 * (difference + difference.T)
+
+
+def _lever(params: np.ndarray) -> float:
+    import loader_model_generated as generated
+
+    completed, _ = generated.function("complete_parameters")(
+        params[: len(generated.PARAMETER_NAMES)]
+    )
+    return float(generated.function("cylinder_kinematics")(np.zeros(4), np.zeros(4), completed)[2])
+
+
+def _piston_position(params: np.ndarray) -> float:
+    from loader_model.plant.equilibrium import static_state
+    from loader_model.plant.plant import OUTPUT_NAMES, plant_function
+
+    state, command = static_state(params)
+    _, outputs = plant_function()(state, command, np.zeros(11), params)
+    return float(np.asarray(outputs).ravel()[OUTPUT_NAMES.index("x_piston")])

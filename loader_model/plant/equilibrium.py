@@ -1,0 +1,75 @@
+r"""Static equilibrium of the plant, computed inside the CasADi graph from the parameters.
+
+At rest (p = 0, ṗ = 0, no road input) the generated ``complete_parameters`` gives the tyre loads
+and the cylinder force F_act0 that hold the loader (masses, geometry, gravity). The hydraulics
+follow in closed form (totals over the n cylinders; friction and end stops vanish at rest):
+
+.. math::
+
+    p_{B0} = p_c, \qquad p_{A0} = \frac{F_{act0} + n \alpha A_p p_c}{n A_p}, \qquad
+    V_{p0} = \frac{Q_{L0}}{n_{pump}} = \frac{k_{Lp} (p_{A0} - p_{B0})}{n_{pump}}
+
+(the pump holds the boom against the leakage, so the rod side needs no charge flow; with the
+pump switched off or the valves shut the chambers are closed and V_p0 = 0), and the accumulator
+holds the oil volume at which its gas pressure equals p_A0 (inverse of the polytropic law), so
+no oil flows through its orifice.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+
+import casadi as ca
+import numpy as np
+
+import loader_model_generated as generated
+from loader_model.plant.components import ATMOSPHERIC_PRESSURE_PA
+from loader_model.plant.plant import STATE_NAMES
+from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
+
+__all__ = ["equilibrium_function", "static_state"]
+
+_N_MECH = len(generated.PARAMETER_NAMES)
+
+
+def _build(symbol: type = ca.SX) -> ca.Function:
+    params = symbol.sym("params", len(PLANT_PARAMETER_NAMES))
+    theta = {name: params[i] for i, name in enumerate(PLANT_PARAMETER_NAMES)}
+    _, force = generated.function("complete_parameters")(params[:_N_MECH])
+    n = theta["n_cyl"]
+    piston = ca.pi / 4 * theta["d_piston"] ** 2
+    annulus = piston - ca.pi / 4 * theta["d_rod"] ** 2
+    p_b = theta["p_charge"]
+    p_a = (force + n * annulus * p_b) / (n * piston)
+    holding = theta["pump_on"] * theta["valves_on"] * theta["leakage_on"]
+    v_p = holding * theta["k_Lp"] * (p_a - p_b) / theta["n_pump"]
+    gas = theta["n_acc"] * theta["V_0"]
+    absolute_0 = theta["p_0"] + ATMOSPHERIC_PRESSURE_PA
+    absolute_a = p_a + ATMOSPHERIC_PRESSURE_PA
+    filled = gas * (1 - (absolute_0 / ca.fmax(absolute_a, absolute_0)) ** (1 / theta["n_poly"]))
+    empty = (p_a - theta["p_0"]) / (theta["n_poly"] * absolute_0 / gas)
+    v_acc = ca.if_else(p_a >= theta["p_0"], filled, empty)
+    zeros = symbol.zeros(10)
+    state = ca.vertcat(zeros, p_a, p_b, v_p, 0, v_acc)
+    return ca.Function(
+        "plant_equilibrium",
+        [params],
+        [state, v_p, force],
+        ["params"],
+        ["x0", "u0", "F_act0"],
+    )
+
+
+@cache
+def equilibrium_function() -> ca.Function:
+    """``plant_equilibrium(params) -> (x0, u0, F_act0)``: static state, the pump command that
+    holds it, and the cylinder force (SX, built once)."""
+    return _build(ca.SX)
+
+
+def static_state(params: np.ndarray) -> tuple[np.ndarray, float]:
+    """Numeric static state (order :data:`~loader_model.plant.plant.STATE_NAMES`) and command."""
+    x0, u0, _ = equilibrium_function()(np.asarray(params, dtype=float))
+    state = np.asarray(x0, dtype=float).ravel()
+    assert state.shape == (len(STATE_NAMES),)
+    return state, float(u0)

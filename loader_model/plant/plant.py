@@ -1,0 +1,213 @@
+r"""The plant: generated multibody model + lift cylinders + pump + valves + accumulator, one Function.
+
+.. math:: \dot x = f(x, u, w, \theta), \qquad y = h(x, u, w, \theta)
+
+State x (:data:`STATE_NAMES`): the coordinates p and rates ṗ (Eq. 26), the tyre anchors ξ
+(``derive/contact.py``), the chamber pressures p_A, p_B (gauge, Pa; Eq. 36, 37), the pump
+displacement V_p and its rate (Fig. 9) and the oil volume in the accumulator. Input u: the pump
+displacement command V_p,ref [m³/rev]. Exogenous w: road displacement and rate under each axle,
+disturbance forces at H (Eq. 5-7). Parameters θ: :data:`~loader_model.plant.plant_parameters.
+PLANT_PARAMETER_NAMES` (mechanical, then hydraulic, then switches); the static tyre loads are
+completed inside the graph (generated ``complete_parameters``), so a varied θ stays consistent.
+
+The drive (Fig. 8, section 2.4): ``n_cyl`` single-rod cylinders in parallel, all quantities below
+are totals over them. The pump moves oil from the rod-side line to the piston-side line,
+
+.. math::
+
+    \dot p_A &= \frac{K_{oil}}{V_A}\left(Q_p + Q_{check} - Q_{relief} - Q_{acc}
+               - A_p \dot x_{cyl} - Q_L\right) \quad \text{(Eq. 36)} \\
+    \dot p_B &= \frac{K_{oil}}{V_B}\left(-Q_p + Q_{charge} + \alpha A_p \dot x_{cyl} + Q_L\right)
+               \quad \text{(Eq. 37)} \\
+    F_{act} &= A_p (p_A - \alpha p_B) - F_f + F_{end} \quad \text{(Eq. 31)}
+
+with Q_p = n V_p (V_p saturated at ±V_p,max), the rod side tied to the charge line by the
+low-side valve Q_charge = G_charge (p_c − p_B) (the rod side is the low side while the boom
+carries its weight), an anti-cavitation check valve from the charge line into the piston side,
+a relief valve on the piston side, leakage Q_L (Eq. 47 with Eq. 48's sign), seal friction F_f
+(Eq. 46, errata 10 reading), end stops, and the accumulator through its orifice. The pump's
+displacement loop is the second-order system of Fig. 9 with its command saturated at ±V_p,max
+and its rate limited to ±V̇_p,max (Table 2, errata 8), each by the C¹ saturation of
+:mod:`loader_model.plant.components` (exact below 99 % of the limit).
+"""
+
+from __future__ import annotations
+
+from functools import cache
+from typing import Any
+
+import casadi as ca
+
+import loader_model_generated as generated
+from loader_model.plant import components as hyd
+from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
+
+__all__ = [
+    "EXOGENOUS_NAMES",
+    "INPUT_NAMES",
+    "OUTPUT_NAMES",
+    "STATE_NAMES",
+    "build_plant",
+    "plant_function",
+]
+
+STATE_NAMES: tuple[str, ...] = (
+    *generated.COORDINATE_NAMES,
+    *generated.RATE_NAMES,
+    *generated.ANCHOR_NAMES,
+    "p_A",
+    "p_B",
+    "V_p",
+    "Vd_p",
+    "V_acc",
+)
+INPUT_NAMES: tuple[str, ...] = ("V_p_ref",)
+EXOGENOUS_NAMES: tuple[str, ...] = generated.EXOGENOUS_NAMES
+OUTPUT_NAMES: tuple[str, ...] = (
+    "xd_H",
+    "yd_H",
+    "thetad_1",
+    "phi",
+    "f_Hx",
+    "f_Hy",
+    "f_Ny",
+    "f_Sx",
+    "f_Sy",
+    "thetadd_1",
+    "p_A",
+    "p_B",
+    "F_act",
+    "x_piston",
+    "V_p",
+    "Q_pump",
+    "F_Ay",
+    "F_By",
+    "p_acc",
+)
+
+_N_MECH = len(generated.PARAMETER_NAMES)
+_SATURATION_BAND = 0.01  # C¹ saturations are exact below 99 % of their limit
+
+
+def _named(params: Any) -> dict[str, Any]:
+    return {name: params[i] for i, name in enumerate(PLANT_PARAMETER_NAMES)}
+
+
+def _drive(x: Any, u: Any, theta: dict[str, Any], completed: Any) -> dict[str, Any]:
+    """Hydraulic quantities of the state (totals over the cylinders)."""
+    p, pd = x[0:4], x[4:8]
+    p_a, p_b, v_p, vd_p, v_acc = x[10], x[11], x[12], x[13], x[14]
+    kinematics = generated.function("cylinder_kinematics")(p, pd, completed)
+    n = theta["n_cyl"]
+    piston = ca.pi / 4 * theta["d_piston"] ** 2
+    annulus = piston - ca.pi / 4 * theta["d_rod"] ** 2
+    position = kinematics[0] - theta["L_retracted"]
+    velocity = kinematics[1]
+    v_a, v_b = hyd.chamber_volumes(
+        position, piston, annulus, theta["stroke"], theta["V_dead_A"], theta["V_dead_B"]
+    )
+    leakage = theta["leakage_on"] * hyd.leakage_flow(
+        theta["k_Lp"], theta["k_Lv"], p_a, p_b, velocity
+    )
+    friction = theta["friction_on"] * hyd.seal_friction(
+        theta["f_s"], theta["tau_s"], theta["gamma_f"], theta["f_C"], theta["f_v"], p_a, velocity
+    )
+    end_stop = n * hyd.end_stop_force(
+        position, velocity, theta["stroke"], theta["k_end"], theta["c_end"]
+    )
+    force = n * (piston * p_a - annulus * p_b) - friction + end_stop
+    v_max, vd_max = theta["V_p_max"], theta["Vd_p_max"]
+    displacement = hyd.saturate(v_p, v_max, _SATURATION_BAND * v_max)
+    pump_flow = theta["pump_on"] * theta["n_pump"] * displacement
+    valves = theta["valves_on"]
+    charge = valves * theta["G_charge"] * (theta["p_charge"] - p_b)
+    check = valves * theta["G_check"] * hyd.ramp(theta["p_charge"] - p_a, 1e4)
+    relief = valves * theta["G_relief"] * hyd.ramp(p_a - theta["p_relief"], 1e5)
+    p_acc = hyd.accumulator_gas_pressure(
+        theta["p_0"], theta["n_acc"] * theta["V_0"], theta["n_poly"], v_acc
+    )
+    q_acc = (
+        theta["accumulator_on"]
+        * theta["n_acc"]
+        * hyd.orifice_flow(
+            theta["d_orifice"], theta["C_d"], theta["rho_oil"], p_a - p_acc, theta["dp_laminar"]
+        )
+    )
+    k_oil = theta["K_oil"]
+    dp_a = hyd.chamber_pressure_rate(
+        k_oil, n * v_a, pump_flow + check - relief - q_acc - n * piston * velocity - leakage
+    )
+    dp_b = hyd.chamber_pressure_rate(
+        k_oil, n * v_b, -pump_flow + charge + n * annulus * velocity + leakage
+    )
+    command = hyd.saturate(u, v_max, _SATURATION_BAND * v_max)
+    rate = hyd.saturate(vd_p, vd_max, _SATURATION_BAND * vd_max)
+    dvd_p = hyd.pump_displacement_acceleration(
+        v_p, vd_p, command, theta["omega_p"], theta["zeta_p"]
+    )
+    # the accumulator's oil is taken as incompressible at the reference density; the orifice's
+    # mass flow is ρ(p_A) q_acc with ρ(p) = ρ0 e^(p/K_oil), the density law of Eq. 36, so oil
+    # mass is conserved exactly between the chamber and the accumulator
+    accumulator_rate = ca.exp(p_a / k_oil) * q_acc
+    return {
+        "force": force,
+        "position": position,
+        "pump_flow": pump_flow,
+        "p_acc": p_acc,
+        "rates": ca.vertcat(dp_a, dp_b, rate, dvd_p, accumulator_rate),
+    }
+
+
+def build_plant(symbol: type = ca.SX) -> ca.Function:
+    """Build the plant Function ``plant(x, u, w, params) -> (xdot, y)`` (module docstring).
+
+    Parameters
+    ----------
+    symbol : casadi.SX or casadi.MX
+        Symbol type of the graph (SX: fast to evaluate and to JIT-compile; MX: compact).
+    """
+    x = symbol.sym("x", len(STATE_NAMES))
+    u = symbol.sym("u", len(INPUT_NAMES))
+    w = symbol.sym("w", len(EXOGENOUS_NAMES))
+    params = symbol.sym("params", len(PLANT_PARAMETER_NAMES))
+    theta = _named(params)
+    completed, _ = generated.function("complete_parameters")(params[:_N_MECH])
+    drive = _drive(x, u, theta, completed)
+    p, pd, anchor = x[0:4], x[4:8], x[8:10]
+    road, road_rate, disturbance = w[0:4], w[4:8], w[8:11]
+    pdd, anchor_rate = generated.function("forward_dynamics")(
+        p, pd, anchor, drive["force"], road, road_rate, disturbance, completed
+    )
+    xdot = ca.vertcat(pd, pdd, anchor_rate, drive["rates"])
+    f_h, f_n, f_s = generated.function("specific_forces")(p, pd, pdd, completed)
+    tyres = generated.function("tyre_contact")(p, pd, anchor, road, road_rate, completed)[0]
+    y = ca.vertcat(
+        pd[0],
+        pd[1],
+        pd[2],
+        p[3] - p[2],
+        f_h[0],
+        f_h[1],
+        f_n[1],
+        f_s[0],
+        f_s[1],
+        pdd[2],
+        x[10],
+        x[11],
+        drive["force"],
+        drive["position"],
+        x[12],
+        drive["pump_flow"],
+        tyres[1],
+        tyres[3],
+        drive["p_acc"],
+    )
+    return ca.Function(
+        "plant", [x, u, w, params], [xdot, y], ["x", "u", "w", "params"], ["xdot", "y"]
+    )
+
+
+@cache
+def plant_function() -> ca.Function:
+    """The SX plant Function, built once per process."""
+    return build_plant(ca.SX)
