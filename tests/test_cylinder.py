@@ -28,12 +28,22 @@ def cyl2() -> CylinderParameters:
         retracted_length=1.0,
         dead_volume_a=1e-3,
         dead_volume_b=2e-3,
+        end_stop_stiffness=1e8,
+        end_stop_damping=1e5,
     )
 
 
 @pytest.fixture
 def oil() -> HydraulicParameters:
-    return HydraulicParameters(bulk_modulus=1.6e9, charge_pressure=2e6)
+    return HydraulicParameters(
+        bulk_modulus=1.6e9,
+        charge_pressure=2e6,
+        oil_density=870.0,
+        charge_conductance=5e-9,
+        check_valve_conductance=5e-9,
+        relief_pressure=2.3e7,
+        relief_conductance=1.8e-9,
+    )
 
 
 def test_area_ratio_of_half_diameter_rod_is_three_quarters(cyl2: CylinderParameters) -> None:
