@@ -17,6 +17,7 @@ COMMANDS: dict[str, str] = {
     "modes": "loader_model.commands.modes_command",
     "calibrate": "loader_model.commands.calibrate_command",
     "iso2631": "loader_model.commands.iso2631_command",
+    "hydraulics": "loader_model.commands.hydraulics_command",
     "reproduce": "loader_model.commands.reproduce_command",
 }
 

@@ -135,7 +135,22 @@ def _check_distinct(points: Mapping[str, Point]) -> None:
             )
 
 
+def _check_hydraulics(params: LoaderParameters) -> None:
+    """Pressures that must be ordered: charge and precharge below the relief setting."""
+    relief = params.hydraulics.relief_pressure
+    for path, value in (
+        ("hydraulics.charge_pressure", params.hydraulics.charge_pressure),
+        ("accumulator.precharge_pressure", params.accumulator.precharge_pressure),
+    ):
+        if value >= relief:
+            raise ValueError(
+                f"{path} = {value!r} Pa must be below hydraulics.relief_pressure = {relief!r} Pa; "
+                f"allowed: < {relief:g} Pa"
+            )
+
+
 def _check_loader(params: LoaderParameters) -> None:
+    _check_hydraulics(params)
     cyl, geo = params.cylinders, params.geometry
     if cyl.rod_diameter >= cyl.piston_diameter:
         raise ValueError(

@@ -65,8 +65,55 @@ def main() -> int:
     _report("forward_dynamics via wrapper", forward / calls, solve, unit="us")
     linearise = _median_seconds(lambda: [model.linearise() for _ in range(100)], 5) / 100
     _report("linearise (A, B, E, C, D)", linearise, solve, unit="us")
+    _bench_plant(forward / calls)
     _bench_roads(solve)
     return 0
+
+
+def _bench_plant(wrapper_call: float) -> None:
+    """One plant right-hand side (issue 8) through ``Function.buffer()``, SX-interpreted and
+    JIT-compiled where a C compiler works, against the forward_dynamics wrapper call."""
+    import casadi as ca
+
+    from loader_model.plant.equilibrium import static_state
+    from loader_model.plant.plant import plant_function
+    from loader_model.plant.plant_parameters import plant_parameter_vector
+
+    params = plant_parameter_vector(None, "empty")
+    state, command = static_state(params)
+    inputs = [state, np.array([command]), np.zeros(11), params]
+    _report("  baseline: forward_dynamics via wrapper", wrapper_call, unit="us")
+    variants = {"plant rhs, SX via buffer()": plant_function()}
+    try:
+        compiled = ca.Function(
+            "plant_compiled",
+            *_symbolic_call(plant_function()),
+            {"jit": True, "compiler": "shell", "jit_options": {"flags": ["-O2"]}},
+        )
+        variants["plant rhs, JIT-compiled via buffer()"] = compiled
+    except RuntimeError as error:  # no working C compiler
+        print(f"  (JIT skipped: {str(error).splitlines()[0]})")
+    for label, function in variants.items():
+        buffer, trigger = function.buffer()
+        for index, value in enumerate(inputs):
+            buffer.set_arg(index, memoryview(np.ascontiguousarray(value, dtype=float)))
+        outputs = [np.zeros(function.nnz_out(i)) for i in range(function.n_out())]
+        for index, out in enumerate(outputs):
+            buffer.set_res(index, memoryview(out))
+        seconds = _median_seconds(lambda trigger=trigger: [trigger() for _ in range(10_000)], 7)
+        _report(label, seconds / 10_000, wrapper_call, unit="us")
+
+
+def _symbolic_call(function):
+    import casadi as ca
+
+    symbols = [ca.SX.sym(function.name_in(i), function.size1_in(i)) for i in range(function.n_in())]
+    return (
+        symbols,
+        function(*symbols),
+        list(function.name_in()),
+        list(function.name_out()),
+    )
 
 
 def _bench_roads(solve: float) -> None:

@@ -159,3 +159,24 @@ def test_oil_mass_is_conserved_without_leakage_and_pump_flow(accumulator: bool) 
     mass = _oil_mass(states, params)
     drift = np.abs(mass - mass[0]).max() / mass[0]
     assert drift < 1e-11, drift  # measured 4.6e-13 (chambers), 1.5e-13 (with accumulator)
+
+
+@pytest.mark.parametrize(
+    ("updates", "match"),
+    [
+        ({"hydraulics.bulk_modulus": 0.0}, r"hydraulics.bulk_modulus = 0.0 Pa is out of range"),
+        ({"cylinders.dead_volume_a": -1e-4}, r"cylinders.dead_volume_a = -0.0001 m\^3 is out of"),
+        ({"pump.displacement_rate_limit": -1.24e-3}, r"pump.displacement_rate_limit = -0.00124"),
+        (
+            {"accumulator.precharge_pressure": 3e7},
+            r"accumulator.precharge_pressure = 30000000.0 Pa",
+        ),
+        ({"hydraulics.charge_pressure": 2.5e7}, r"must be below hydraulics.relief_pressure"),
+        ({"hydraulics.oil_density": 0.0}, r"hydraulics.oil_density = 0.0 kg/m\^3 is out of range"),
+    ],
+)
+def test_bad_hydraulic_parameters_are_refused_by_name(updates, match) -> None:
+    from loader_model.parameters import default_loader, replace
+
+    with pytest.raises(ValueError, match=match):
+        replace(default_loader(), updates)

@@ -1,0 +1,69 @@
+"""Static pressures, hydraulic stiffness, modes of the coupled plant and the pressure loop of
+section 3.2 beside Eq. 43; writes a Bode overlay (PNG)."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from loader_model.commands.common import add_model_arguments
+
+HELP = "hydraulic plant: static pressures, k_eq, coupled modes, pressure loop vs Eq. 43"
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add ``--params``, ``--load``, ``--highpass`` and ``--plot``."""
+    add_model_arguments(parser)
+    parser.add_argument(
+        "--highpass",
+        type=float,
+        default=1.0,
+        metavar="RAD_S",
+        help="corner of the high-pass on p_A in the pressure loop, rad/s (default: 1)",
+    )
+    parser.add_argument(
+        "--plot",
+        metavar="FILE.png",
+        default="pressure_loop.png",
+        help="Bode overlay of the pressure loop and Eq. 43 (default: pressure_loop.png)",
+    )
+
+
+def run(args: argparse.Namespace) -> int:
+    """Print the hydraulics report and write the figure atomically."""
+    from loader_model.export import write_atomically
+    from loader_model.plant.plant_report import hydraulics_report, plot_pressure_loop
+
+    if not Path(args.plot).suffix.lower() == ".png":
+        raise ValueError(f"--plot {args.plot!r}: allowed: a file name ending in .png")
+    if not args.highpass > 0:
+        raise ValueError(f"--highpass {args.highpass!r}: allowed: a number > 0 (rad/s)")
+    report = hydraulics_report(args.params, args.load, highpass_rad_s=args.highpass)
+    static = report.static_outputs
+    print(f"Hydraulic plant, bucket load {args.load}")
+    print(f"  static piston pressure p_A   {static['p_A'] / 1e5:10.2f} bar (gauge)")
+    print(f"  static rod pressure p_B      {static['p_B'] / 1e5:10.2f} bar (charge line)")
+    print(f"  static cylinder force        {static['F_act'] / 1e3:10.2f} kN (both cylinders)")
+    print(f"  piston position              {static['x_piston'] * 1e3:10.1f} mm from retracted")
+    print(f"  pump displacement to hold    {static['V_p_hold'] * 1e6:10.3f} cm³/rev (leakage)")
+    print(f"  k_eq (chambers closed)       {report.k_eq_n_per_m:10.4g} N/m (Eq. 28, errata 6)")
+    print("\nModes of the coupled plant (frequency Hz / damping ratio):")
+    for name, modes in report.modes.items():
+        listed = ", ".join(f"{f:.2f}/{z:.3f}" for f, z in modes)
+        print(f"  {name}:\n    {listed}")
+    print("\nPressure loop p_A/p_A,ref (section 3.2, k_p = Table 3) beside Eq. 43:")
+    for name, item in report.comparisons.items():
+        poles = ", ".join(f"{p:.3g}" for p in item.dominant_poles[:6])
+        print(f"  {name}: DC gain {item.dc_gain:.3g}, |G(1 Hz)| {abs(item.gain_at_1hz):.3g}")
+        print(f"    slowest poles [rad/s]: {poles}")
+    reference = next(iter(report.comparisons.values()))
+    print(
+        f"  Eq. 43: DC gain {reference.reference_dc_gain:.3g}, poles "
+        + ", ".join(f"{p:.3g}" for p in reference.reference_poles)
+        + ", zero "
+        + ", ".join(f"{z:.3g}" for z in reference.reference_zeros)
+    )
+    title = f"Pressure loop of the detailed plant and Eq. 43 (load {args.load})"
+    write_atomically(args.plot, lambda temporary: plot_pressure_loop(report, temporary, title))
+    print(f"\nwrote {args.plot}")
+    return 0
