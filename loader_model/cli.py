@@ -17,6 +17,7 @@ COMMANDS: dict[str, str] = {
     "modes": "loader_model.commands.modes_command",
     "calibrate": "loader_model.commands.calibrate_command",
     "iso2631": "loader_model.commands.iso2631_command",
+    "identify": "loader_model.commands.identify_command",
     "reproduce": "loader_model.commands.reproduce_command",
 }
 

@@ -220,7 +220,7 @@ def write_measurement_csv(
 ) -> Path:
     """Write labelled columns (``{"time [s]": t, ...}``) as CSV, atomically.
 
-    ``repr``-exact floats (``%.17g``) so that reading back gives the same numbers.
+    Floats are written with ``repr`` (shortest text that reads back as the same number).
     """
     labels = list(columns)
     data = np.column_stack([np.asarray(columns[label], dtype=float) for label in labels])
@@ -230,6 +230,6 @@ def write_measurement_csv(
             for comment in comments:
                 stream.write(f"# {comment}\n")
             stream.write(",".join(labels) + "\n")
-            np.savetxt(stream, data, delimiter=",", fmt="%.17g")
+            stream.writelines(",".join(map(repr, row)) + "\n" for row in data.tolist())
 
     return write_atomically(path, write)

@@ -219,16 +219,16 @@ def synthesize(
     t_fine, v_ref, x_ref, mass = _schedule(profile, rng, 1e-3)
     a_p, alpha, k_oil = cyl.area_m2, cyl.alpha, lk["K_oil"]
 
-    def inputs(t: float, x: float) -> tuple[float, float]:
-        m = float(np.interp(t, t_fine, mass))
-        q = a_p * (np.interp(t, t_fine, v_ref) + position_gain * (np.interp(t, t_fine, x_ref) - x))
-        return m, max_flow_m3_s * np.tanh(q / max_flow_m3_s)
-
-    def rhs_full(t: float, y: np.ndarray) -> tuple[np.ndarray, float, float]:
+    def rhs(t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """State derivative, load mass and pump flow; t scalar or (n,), y (4,) or (4, n)."""
         x, v, p_a, p_b = y
-        m, q_a = inputs(t, x)
+        m = np.interp(t, t_fine, mass)
+        q = a_p * (np.interp(t, t_fine, v_ref) + position_gain * (np.interp(t, t_fine, x_ref) - x))
+        q_a = max_flow_m3_s * np.tanh(q / max_flow_m3_s)
         leak = lk["k_Lp"] * (p_a - p_b) + lk["k_Lv"] * v
-        f_f = friction_force(coefficients, np.array([v]), np.array([p_a]))[0]
+        f_f = friction_force(coefficients, np.atleast_1d(v), np.atleast_1d(p_a)).reshape(
+            np.shape(v)
+        )
         acc = (a_p * (p_a - alpha * p_b) - f_f - cyl.load_force(m)) / cyl.inertia(m)
         dp_a = k_oil / cyl.volume_a(x) * (q_a - a_p * v - leak)
         dp_b = (
@@ -239,11 +239,11 @@ def synthesize(
         return np.array([v, acc, dp_a, dp_b]), m, q_a
 
     # Start at rest in equilibrium: F_f(0) = 0, so A_p (p_A − α p_B) = F_L, p_B = p_c.
-    p_a0 = (cyl.load_force(mass[0]) / a_p + alpha * charge_pressure_pa) + lk["k_Lp"] * 0.0
+    p_a0 = cyl.load_force(mass[0]) / a_p + alpha * charge_pressure_pa
     y0 = np.array([x_ref[0], 0.0, float(p_a0), charge_pressure_pa])
     t_samples = np.arange(0.0, t_fine[-1], 1.0 / sensors.sample_rate_hz)
     solution = solve_ivp(
-        lambda t, y: rhs_full(t, y)[0],
+        lambda t, y: rhs(t, y)[0],
         (0.0, t_samples[-1]),
         y0,
         method="LSODA",
@@ -255,10 +255,7 @@ def synthesize(
     if not solution.success:  # pragma: no cover - the stand-in model is benign
         raise RuntimeError(f"synthetic lift test did not integrate: {solution.message}")
     states = solution.y
-    derivatives, masses, flows = zip(
-        *(rhs_full(t, y) for t, y in zip(t_samples, states.T, strict=True)), strict=True
-    )
-    derivative = np.array(derivatives).T
+    derivative, masses, flows = rhs(t_samples, states)
     truth = {
         "x": states[0],
         "v": states[1],
@@ -266,8 +263,8 @@ def synthesize(
         "p_a": states[2],
         "p_b": states[3],
         "dp_a": derivative[2],
-        "flow": np.array(flows),
-        "load_mass": np.array(masses),
+        "flow": flows,
+        "load_mass": masses,
     }
 
     def sense(true: np.ndarray, noise: float, step: float, offset: float) -> np.ndarray:
