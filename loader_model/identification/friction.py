@@ -136,10 +136,9 @@ def fit_friction(
         Measured friction force F_f in N (:func:`measured_friction`).
     smooth : callable, optional
         Linear filter applied to the model's columns (shape (n, k) -> (m, k)) before comparing
-        with ``friction`` (length m): the filter the measured friction went through. Filtering
-        the model like the data keeps the fit free of the bias a smoothed velocity would put
-        into the nonlinear terms; ``v`` and ``p_a`` are then the less-smoothed signals.
-        Default: none (all arrays of one length).
+        with ``friction`` (length m): the filter the measured friction went through, so that
+        model and data are filtered alike (:mod:`.pipeline`). ``v`` and ``p_a`` then have the
+        unfiltered length n. Default: none (all arrays of one length).
     lags : int
         Bartlett lags of the covariance (the derivative filter's window for filtered signals).
     level : float

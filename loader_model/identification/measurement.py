@@ -157,17 +157,18 @@ def _check_time(time: np.ndarray, lines: list[int], origin: str) -> None:
     if bad.size:
         i = int(bad[0]) + 1
         raise ValueError(
-            f"{origin}: column 'time', line {lines[i]}: {time[i]!r} s is not after "
-            f"{time[i - 1]!r} s (time must be strictly increasing)"
+            f"{origin}: column 'time', line {lines[i]}: {float(time[i])!r} s is not after "
+            f"{float(time[i - 1])!r} s (time must be strictly increasing)"
         )
     mean = (time[-1] - time[0]) / (time.size - 1)
-    deviation = np.abs(interval - mean) / mean
-    if np.max(deviation) > TIME_JITTER_TOLERANCE:
-        i = int(np.argmax(deviation)) + 1
+    bad = np.flatnonzero(np.abs(interval - mean) > TIME_JITTER_TOLERANCE * mean)
+    if bad.size:
+        i = int(bad[0]) + 1
         raise ValueError(
-            f"{origin}: column 'time', line {lines[i]}: interval {interval[i - 1]!r} s from "
-            f"{time[i - 1]!r} s deviates from the mean {mean:.6g} s by more than "
-            f"{TIME_JITTER_TOLERANCE:.0%} (non-uniform sampling)"
+            f"{origin}: column 'time', line {lines[i]}: {float(time[i])!r} s is "
+            f"{float(interval[i - 1]):.6g} s after {float(time[i - 1])!r} s; the mean interval is "
+            f"{mean:.6g} s and intervals may deviate by {TIME_JITTER_TOLERANCE:.0%} "
+            "(non-uniform sampling)"
         )
 
 

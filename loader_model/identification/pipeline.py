@@ -5,12 +5,13 @@ x̂, v = ẋ, a = ẍ, p̂_A, p̂_B, ṗ_A.
 
 Eq. 44 is filtered with one kernel throughout: the low-pass h₂ contained in the second-derivative
 filter (:func:`~.derivatives.acceleration_kernel`) is applied to p_A, p_B and F_L, so the
-measured friction is h₂ ∗ F_f. The friction model of Eq. 46 is nonlinear in v; evaluated at a
-smoothed velocity it would differ from h₂ ∗ F_f near motion reversals. So it is evaluated at a
-velocity differentiated with a four times higher cutoff (:data:`FINE_CUTOFF_FACTOR`) and the
-raw p_A, then filtered with h₂ too (``Signals.smooth``). Without these two steps the synthetic
-test's noise-free record (10 Hz cutoff) left a 440 N residual and biased f_s by −53 % and γ by
-+54 %; with them, 1 N and below 0.1 %.
+measured friction is h₂ ∗ F_f. The friction model of Eq. 46 is evaluated at the smoothed
+velocity v̂ and the raw p_A and then filtered with h₂ too (``Signals.smooth``), so model and
+measurement went through the same kernel. With the plain smoothing filter on p_A, p_B instead,
+the synthetic test's noise-free record (10 Hz cutoff) left a 440 N residual and biased f_s by
+−53 % and γ by +54 %; with h₂, 1.4 N and below 0.1 %. A less smoothed velocity in the model
+(derivative cutoff 2, 4, 8 times higher) did not lower that further but let velocity noise bias
+τ_s (mean over 6 noisy records: +0.1 %, +2.7 %, +11 %, against −0.4 % with v̂).
 
 Eq. 48 uses the smoothed values and first derivatives; the pump flow Q_A enters unfiltered: it
 is not differentiated, and filtering would smear an isolated drop-out over a whole window, where
@@ -39,17 +40,12 @@ from loader_model.identification.measurement import MeasurementRecord
 from loader_model.identification.regression import LinearFit
 
 __all__ = [
-    "FINE_CUTOFF_FACTOR",
     "FrictionResult",
     "Signals",
     "identify_friction",
     "identify_leakage",
     "prepare_signals",
 ]
-
-#: Cutoff of the velocity inside the friction model, relative to the main cutoff (capped at
-#: fs / 5).
-FINE_CUTOFF_FACTOR = 4.0
 
 
 @dataclass(frozen=True)
@@ -64,9 +60,9 @@ class Signals:
         Savitzky-Golay window in samples.
     cutoff_hz : float
         Its −3 dB cutoff request in Hz.
-    v_fine, p_a_raw, p_b_raw, load_mass_raw : numpy.ndarray
-        Untrimmed velocity with the fine cutoff, raw p_A, p_B and load mass (for the friction
-        equation, see :meth:`smooth`).
+    v_full, p_a_raw, p_b_raw, load_mass_raw : numpy.ndarray
+        Untrimmed v̂, raw p_A, p_B and load mass (for the friction equation, see
+        :meth:`smooth`).
     keep : slice
         The samples kept after trimming the filter's ends.
     """
@@ -82,7 +78,7 @@ class Signals:
     load_mass: np.ndarray
     window: int
     cutoff_hz: float
-    v_fine: np.ndarray
+    v_full: np.ndarray
     p_a_raw: np.ndarray
     p_b_raw: np.ndarray
     load_mass_raw: np.ndarray
@@ -114,11 +110,11 @@ def prepare_signals(
         return savgol_derivative(signal, fs, order, window)
 
     keep = slice(window // 2, record.time_s.size - window // 2)
-    fine = savgol_window(fs, min(FINE_CUTOFF_FACTOR * cutoff_hz, 0.2 * fs))
+    v_full = d(record.position_m, 1)
     return Signals(
         time=record.time_s[keep],
         x=d(record.position_m, 0)[keep],
-        v=d(record.position_m, 1)[keep],
+        v=v_full[keep],
         a=d(record.position_m, 2)[keep],
         p_a=d(record.p_a_pa, 0)[keep],
         p_b=d(record.p_b_pa, 0)[keep],
@@ -127,7 +123,7 @@ def prepare_signals(
         load_mass=record.load_mass_kg[keep],
         window=window,
         cutoff_hz=cutoff_hz,
-        v_fine=savgol_derivative(record.position_m, fs, 1, fine),
+        v_full=v_full,
         p_a_raw=record.p_a_pa,
         p_b_raw=record.p_b_pa,
         load_mass_raw=record.load_mass_kg,
@@ -168,7 +164,7 @@ def identify_friction(
         s.a,
     )
     fit = fit_friction(
-        signals.v_fine,
+        signals.v_full,
         signals.p_a_raw,
         measured,
         smooth=signals.smooth,
