@@ -77,7 +77,11 @@ def test_bar_litre_and_displacement_columns_are_converted(tmp_path: Path) -> Non
         (HEADER, (5, 1, "nan"), r"column 'x_cyl', line 8: 'nan' is not finite"),
         (HEADER, (7, 3, "inf"), r"column 'p_B', line 10: 'inf' is not finite"),
         (HEADER, (30, 0, "0.058"), r"column 'time', line 33: 0.058 s is not after 0.058 s"),
-        (HEADER, (30, 0, "0.0605"), r"column 'time', line 33: 0.0605 s is 0.0025 s after 0.058 s.*non-uniform"),
+        (
+            HEADER,
+            (30, 0, "0.0605"),
+            r"column 'time', line 33: 0.0605 s is 0.0025 s after 0.058 s.*non-uniform",
+        ),
     ],
 )
 def test_bad_input_names_column_line_and_value(

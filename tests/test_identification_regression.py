@@ -73,5 +73,5 @@ def test_exact_data_give_exact_coefficients() -> None:
 def test_zero_regressor_is_named() -> None:
     x, y = _line(50, 0)
     x[:, 1] = 0.0
-    with pytest.raises(ValueError, match="identically zero.*b"):
+    with pytest.raises(ValueError, match=r"identically zero.*b"):
         robust_linear_fit(x, y, ("a", "b"))

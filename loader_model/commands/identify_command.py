@@ -167,7 +167,7 @@ def _fit(args: argparse.Namespace) -> int:
 def _synthesize(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    from loader_model.identification import SensorOptions, TestProfile, synthesize
+    from loader_model.identification import LiftProfile, SensorOptions, synthesize
     from loader_model.identification.measurement import write_measurement_csv
 
     if not Path(args.output).resolve().parent.is_dir():
@@ -192,7 +192,7 @@ def _synthesize(args: argparse.Namespace) -> int:
         outlier_fraction=args.outliers,
         seed=args.seed,
     )
-    recording = synthesize(sensors, TestProfile(cycles=args.cycles))
+    recording = synthesize(sensors, LiftProfile(cycles=args.cycles))
     columns = recording.record.columns()
     if args.pressure_unit == "bar":
         columns = {

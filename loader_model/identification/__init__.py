@@ -30,8 +30,8 @@ from loader_model.identification.regression import LinearFit
 from loader_model.identification.synthetic import (
     TABLE4,
     TABLE5,
+    LiftProfile,
     SensorOptions,
-    TestProfile,
     synthesize,
 )
 
@@ -42,10 +42,10 @@ __all__ = [
     "TABLE5",
     "EquivalentCylinder",
     "LeakageFit",
+    "LiftProfile",
     "LinearFit",
     "MeasurementRecord",
     "SensorOptions",
-    "TestProfile",
     "fit_friction",
     "fit_leakage",
     "identify_friction",

@@ -16,8 +16,13 @@ the synthetic test's noise-free record (10 Hz cutoff) left a 440 N residual and 
 Eq. 48 uses the smoothed values and first derivatives; the pump flow Q_A enters unfiltered: it
 is not differentiated, and filtering would smear an isolated drop-out over a whole window, where
 the robust fit could no longer single it out. Half a window is dropped at each end (the filter's
-end effects). Residuals of filtered signals are correlated over about a window, so the
-covariances use that many Bartlett lags (:mod:`.regression`).
+end effects).
+
+Residuals of filtered signals are correlated, so the covariances add Bartlett-weighted lags
+(:mod:`.regression`) up to :data:`COVARIANCE_LAGS_PER_WINDOW` windows. Chosen on the synthetic
+records: with one window the friction standard errors were 1.3-1.9 times the scatter of the
+estimates over 28 seeds (intervals too wide, coverage 100 %); with four they match it within
+about 20 %. The leakage errors hardly change (its residual is mostly white flow noise).
 """
 
 from __future__ import annotations
@@ -40,12 +45,16 @@ from loader_model.identification.measurement import MeasurementRecord
 from loader_model.identification.regression import LinearFit
 
 __all__ = [
+    "COVARIANCE_LAGS_PER_WINDOW",
     "FrictionResult",
     "Signals",
     "identify_friction",
     "identify_leakage",
     "prepare_signals",
 ]
+
+#: Bartlett lags of the covariances, in derivative-filter windows.
+COVARIANCE_LAGS_PER_WINDOW = 4
 
 
 @dataclass(frozen=True)
@@ -168,7 +177,7 @@ def identify_friction(
         signals.p_a_raw,
         measured,
         smooth=signals.smooth,
-        lags=signals.window,
+        lags=COVARIANCE_LAGS_PER_WINDOW * signals.window,
         level=level,
     )
     return FrictionResult(fit, measured, signals)
@@ -187,6 +196,6 @@ def identify_leakage(
         signals.p_a,
         signals.p_b,
         robust=robust,
-        lags=signals.window,
+        lags=COVARIANCE_LAGS_PER_WINDOW * signals.window,
         level=level,
     )

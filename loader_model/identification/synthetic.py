@@ -40,9 +40,9 @@ from loader_model.parameters import bucket_load, default_loader
 __all__ = [
     "TABLE4",
     "TABLE5",
+    "LiftProfile",
     "SensorOptions",
     "SyntheticRecording",
-    "TestProfile",
     "synthesize",
 ]
 
@@ -89,7 +89,7 @@ class SensorOptions:
 
 
 @dataclass(frozen=True)
-class TestProfile:
+class LiftProfile:
     """The lift test: cycles of extend, hold, retract, hold with random rates and loads.
 
     Attributes
@@ -142,7 +142,7 @@ def _raised_cosine_ramp(t: np.ndarray, start: float, duration: float) -> np.ndar
     return 0.5 - 0.5 * np.cos(np.pi * u)
 
 
-def _schedule(profile: TestProfile, rng: np.random.Generator, dt: float):
+def _schedule(profile: LiftProfile, rng: np.random.Generator, dt: float):
     """Reference velocity, position and load mass on a fine grid (fine time, v_ref, x_ref, m)."""
     low, high = profile.position_range_m
     x0 = low
@@ -176,7 +176,7 @@ def _schedule(profile: TestProfile, rng: np.random.Generator, dt: float):
 
 def synthesize(
     sensors: SensorOptions | None = None,
-    profile: TestProfile | None = None,
+    profile: LiftProfile | None = None,
     *,
     cylinder: EquivalentCylinder | None = None,
     friction: dict[str, float] | None = None,
@@ -192,7 +192,7 @@ def synthesize(
     ----------
     sensors : SensorOptions, optional
         Sample rate, noise, quantisation, offsets, outliers and seed.
-    profile : TestProfile, optional
+    profile : LiftProfile, optional
         The extend/retract cycles.
     cylinder : EquivalentCylinder, optional
         Default: the shipped default loader with the full-load case's centre of gravity.
@@ -206,7 +206,7 @@ def synthesize(
         k_x of the position feedback in 1/s.
     """
     sensors = sensors or SensorOptions()
-    profile = profile or TestProfile()
+    profile = profile or LiftProfile()
     cyl = cylinder or EquivalentCylinder.from_parameters(default_loader(), bucket_load("full"))
     fr = {**TABLE4, **(friction or {})}
     lk = {**TABLE5, **(leakage or {})}
