@@ -61,11 +61,9 @@ def test_bad_csv_gives_a_clear_error_and_writes_nothing(
     data: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     lines = data.read_text().splitlines()
-    lines[10] = (
-        lines[10].replace(",", ",oops,", 1).split(",oops,")[0]
-        + ",oops,"
-        + ",".join(lines[10].split(",")[2:])
-    )
+    cells = lines[10].split(",")
+    cells[1] = "oops"  # x_cyl on file line 11
+    lines[10] = ",".join(cells)
     bad = tmp_path / "bad.csv"
     bad.write_text("\n".join(lines) + "\n")
     update, plot = tmp_path / "new.toml", tmp_path / "fit.png"
