@@ -57,6 +57,8 @@ class EquivalentCylinder:
         m_eq of the boom with empty bucket, in kg.
     inertia_per_kg : float
         dm_eq/dm_load of the bucket load (dimensionless).
+    lever_m_per_rad : float
+        h = dx_cyl/dφ at the operating boom angle in m/rad (Eq. 35).
     """
 
     area_m2: float
@@ -68,6 +70,7 @@ class EquivalentCylinder:
     load_force_per_kg: float
     inertia_kg: float
     inertia_per_kg: float
+    lever_m_per_rad: float
 
     @classmethod
     def from_parameters(cls, loader: LoaderParameters, load: BucketLoad) -> EquivalentCylinder:
@@ -98,6 +101,7 @@ class EquivalentCylinder:
             load_force_per_kg=float(load_moment / load.mass / lever),
             inertia_kg=boom_inertia / lever**2,
             inertia_per_kg=load_inertia / load.mass / lever**2,
+            lever_m_per_rad=lever,
         )
 
     def load_force(self, load_mass_kg: np.ndarray | float) -> np.ndarray:
