@@ -68,6 +68,8 @@ def test_bar_litre_and_displacement_columns_are_converted(tmp_path: Path) -> Non
         (HEADER.replace(",p_B [Pa]", ""), None, r"missing column\(s\) \['p_B'\]"),
         (HEADER.replace(",m_load [kg]", ""), None, r"missing column\(s\) \['m_load'\]"),
         (HEADER.replace("Q_A [m^3/s]", "flow [m^3/s]"), None, r"missing.*Q_A \(or V_p\)"),
+        (HEADER.replace("x_cyl [m]", "angle [rad]"), None, r"\['x_cyl \(or phi\)'\]"),
+        (HEADER + ",phi [deg]", None, r"either column 'x_cyl' or 'phi'"),
         (HEADER.replace("p_A [Pa]", "p_A"), None, r"column 'p_A' has no unit"),
         (HEADER.replace("p_A [Pa]", "p_A [psi]"), None, r"'p_A' has unit 'psi'; allowed"),
         (HEADER.replace("x_cyl [m]", "x_cyl [mm]"), None, r"'x_cyl' has unit 'mm'"),

@@ -129,7 +129,7 @@ def _fit(args: argparse.Namespace) -> int:
     loader, cylinder = _loader_and_cylinder(args)
     record = read_measurement_csv(args.data)
     cutoff = {} if args.cutoff is None else {"cutoff_hz": args.cutoff}
-    signals = prepare_signals(record, loader.pump.shaft_speed, **cutoff)
+    signals = prepare_signals(record, loader.pump.shaft_speed, cylinder=cylinder, **cutoff)
     header = (
         f"{args.data}: {record.time_s.size} samples at {record.sample_rate_hz:.6g} Hz; "
         f"Savitzky-Golay cubic, window {signals.window} samples (-3 dB at {signals.cutoff_hz:g}"

@@ -59,6 +59,10 @@ class EquivalentCylinder:
         dm_eq/dm_load of the bucket load (dimensionless).
     lever_m_per_rad : float
         h = dx_cyl/dφ at the operating boom angle in m/rad (Eq. 35).
+    kinematics : tuple of float
+        (C_x, C_y, D_x, D_y, E_x, E_y, φ0, L_r): cylinder base, boom pivot and rod end at the
+        operating boom angle φ0 (m, rad) and the retracted length (m), for
+        :meth:`position_from_boom_angle`.
     """
 
     area_m2: float
@@ -71,6 +75,7 @@ class EquivalentCylinder:
     inertia_kg: float
     inertia_per_kg: float
     lever_m_per_rad: float
+    kinematics: tuple[float, ...] = ()
 
     @classmethod
     def from_parameters(cls, loader: LoaderParameters, load: BucketLoad) -> EquivalentCylinder:
@@ -102,6 +107,7 @@ class EquivalentCylinder:
             inertia_kg=boom_inertia / lever**2,
             inertia_per_kg=load_inertia / load.mass / lever**2,
             lever_m_per_rad=lever,
+            kinematics=(*map(float, (*c, *d, *e)), geo.boom_angle, cyl.retracted_length),
         )
 
     def load_force(self, load_mass_kg: np.ndarray | float) -> np.ndarray:
@@ -120,6 +126,34 @@ class EquivalentCylinder:
         """Total rod-side volume V_B = α A_p (s − x) + V_B,dead in m³ (Eq. 37)."""
         x = np.asarray(position_m, dtype=float)
         return self.alpha * self.area_m2 * (self.stroke_m - x) + self.dead_volume_b_m3
+
+    def position_from_boom_angle(self, boom_angle_rad: np.ndarray) -> np.ndarray:
+        r"""Piston position x = |E(φ) − C| − L_r in m from the boom angle φ = θ2 − θ1 (Eq. 35).
+
+        .. math:: E(\varphi) = D + R(\varphi - \varphi_0) (E_0 - D)
+
+        (the rod end turns with the boom about the pivot D; R a rotation by the angle).
+
+        Raises
+        ------
+        ValueError
+            If a position falls outside [0, stroke], naming the first such sample.
+        """
+        c_x, c_y, d_x, d_y, e_x, e_y, phi0, retracted = self.kinematics
+        turn = np.asarray(boom_angle_rad, dtype=float) - phi0
+        r_x, r_y = e_x - d_x, e_y - d_y
+        x = d_x + np.cos(turn) * r_x - np.sin(turn) * r_y - c_x
+        y = d_y + np.sin(turn) * r_x + np.cos(turn) * r_y - c_y
+        position = np.hypot(x, y) - retracted
+        bad = np.flatnonzero((position < 0.0) | (position > self.stroke_m))
+        if bad.size:
+            i = int(bad[0])
+            raise ValueError(
+                f"boom angle {float(np.asarray(boom_angle_rad)[i])!r} rad (sample {i + 1}) puts "
+                f"the piston at {position[i]:.4g} m, outside the stroke [0, {self.stroke_m:g}] m "
+                "of the parameter file"
+            )
+        return position
 
     def describe(self) -> str:
         """One line with A_p, α and the load model, for reports."""

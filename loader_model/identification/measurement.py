@@ -13,7 +13,8 @@ Format (comma separated, UTF-8; blank lines and lines starting with ``#`` are sk
 column     accepted units                   meaning
 ========== ================================ =====================================================
 time       s                                sample time, strictly increasing, uniform within 1 %
-x_cyl      m                                piston position from the retracted end stop
+x_cyl      m                                piston position from the retracted end stop, *or*
+phi        rad, deg (× π/180, converted)    boom angle φ = θ2 − θ1 (x_cyl from the geometry)
 p_A        Pa, bar (× 1e5, converted)       piston-side gauge pressure (both cylinders)
 p_B        Pa, bar (× 1e5, converted)       rod-side gauge pressure
 Q_A        m^3/s, L/min (÷ 60000)           pump flow to the piston sides (both cylinders), *or*
@@ -30,7 +31,7 @@ from __future__ import annotations
 
 import csv
 import io
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -51,13 +52,15 @@ __all__ = [
 COLUMN_UNITS: dict[str, dict[str, float]] = {
     "time": {"s": 1.0},
     "x_cyl": {"m": 1.0},
+    "phi": {"rad": 1.0, "deg": np.pi / 180.0},
     "p_A": {"Pa": 1.0, "bar": 1e5},
     "p_B": {"Pa": 1.0, "bar": 1e5},
     "Q_A": {"m^3/s": 1.0, "L/min": 1.0 / 60000.0},
     "V_p": {"m^3/rev": 1.0, "cm^3/rev": 1e-6},
     "m_load": {"kg": 1.0},
 }
-_REQUIRED = ("time", "x_cyl", "p_A", "p_B", "m_load")
+_REQUIRED = ("time", "p_A", "p_B", "m_load")
+_EITHER = (("x_cyl", "phi"), ("Q_A", "V_p"))
 #: Fewest data rows accepted (the derivative window needs more for a useful fit anyway).
 MIN_ROWS = 50
 #: Largest accepted deviation of a sampling interval from the mean interval, as a fraction.
@@ -68,16 +71,18 @@ TIME_JITTER_TOLERANCE = 0.01
 class MeasurementRecord:
     """A validated identification record, in SI units (see the module docstring).
 
-    Exactly one of ``flow_m3_s`` and ``displacement_m3_rev`` is given.
+    Exactly one of ``position_m`` and ``boom_angle_rad``, and one of ``flow_m3_s`` and
+    ``displacement_m3_rev`` is given.
     """
 
     time_s: np.ndarray
-    position_m: np.ndarray
+    position_m: np.ndarray | None
     p_a_pa: np.ndarray
     p_b_pa: np.ndarray
     load_mass_kg: np.ndarray
     flow_m3_s: np.ndarray | None = None
     displacement_m3_rev: np.ndarray | None = None
+    boom_angle_rad: np.ndarray | None = None
 
     @property
     def sample_rate_hz(self) -> float:
@@ -90,9 +95,19 @@ class MeasurementRecord:
             return self.flow_m3_s
         return np.asarray(self.displacement_m3_rev) * shaft_speed_rev_s
 
+    def position(self, from_boom_angle: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
+        """Piston position in m: the x_cyl column, or ``from_boom_angle(phi)``."""
+        if self.position_m is not None:
+            return self.position_m
+        return from_boom_angle(np.asarray(self.boom_angle_rad))
+
     def columns(self) -> dict[str, np.ndarray]:
         """Header label ``name [SI unit]`` -> samples, in file order (for writing)."""
-        out = {"time [s]": self.time_s, "x_cyl [m]": self.position_m}
+        out: dict[str, np.ndarray] = {"time [s]": self.time_s}
+        if self.position_m is not None:
+            out["x_cyl [m]"] = self.position_m
+        else:
+            out["phi [rad]"] = np.asarray(self.boom_angle_rad)
         out |= {"p_A [Pa]": self.p_a_pa, "p_B [Pa]": self.p_b_pa}
         if self.flow_m3_s is not None:
             out["Q_A [m^3/s]"] = self.flow_m3_s
@@ -123,14 +138,15 @@ def _parse_header(cells: list[str], origin: str) -> dict[str, tuple[int, float]]
             raise ValueError(f"{origin}: column {name!r} has unit {unit!r}; allowed: {list(units)}")
         found[name] = (index, units[unit])
     missing = [name for name in _REQUIRED if name not in found]
-    if "Q_A" not in found and "V_p" not in found:
-        missing.append("Q_A (or V_p)")
+    for first, second in _EITHER:
+        if first not in found and second not in found:
+            missing.append(f"{first} (or {second})")
+        if first in found and second in found:
+            raise ValueError(f"{origin}: give either column {first!r} or {second!r}, not both")
     if missing:
         raise ValueError(
             f"{origin}: missing column(s) {missing}; the header has {[c.strip() for c in cells]}"
         )
-    if "Q_A" in found and "V_p" in found:
-        raise ValueError(f"{origin}: give either column 'Q_A' or 'V_p', not both")
     return found
 
 
@@ -207,12 +223,13 @@ def read_measurement_csv(path: str | Path) -> MeasurementRecord:
     _check_time(data["time"], lines, origin)
     return MeasurementRecord(
         time_s=data["time"],
-        position_m=data["x_cyl"],
+        position_m=data.get("x_cyl"),
         p_a_pa=data["p_A"],
         p_b_pa=data["p_B"],
         load_mass_kg=data["m_load"],
         flow_m3_s=data.get("Q_A"),
         displacement_m3_rev=data.get("V_p"),
+        boom_angle_rad=data.get("phi"),
     )
 
 

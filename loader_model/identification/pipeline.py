@@ -104,8 +104,16 @@ def prepare_signals(
     record: MeasurementRecord,
     shaft_speed_rev_s: float,
     cutoff_hz: float = DEFAULT_CUTOFF_HZ,
+    cylinder: EquivalentCylinder | None = None,
 ) -> Signals:
-    """Filter and differentiate a record (see the module docstring)."""
+    """Filter and differentiate a record (see the module docstring).
+
+    ``cylinder`` converts a boom-angle column to the piston position (kinematically, as the
+    paper did); it is needed only for records with ``phi`` instead of ``x_cyl``.
+    """
+    if record.position_m is None and cylinder is None:
+        raise ValueError("the record gives the boom angle phi: pass the cylinder to convert it")
+    position = record.position(cylinder.position_from_boom_angle if cylinder else np.asarray)
     fs = record.sample_rate_hz
     window = savgol_window(fs, cutoff_hz)
     if record.time_s.size < 3 * window:
@@ -119,12 +127,12 @@ def prepare_signals(
         return savgol_derivative(signal, fs, order, window)
 
     keep = slice(window // 2, record.time_s.size - window // 2)
-    v_full = d(record.position_m, 1)
+    v_full = d(position, 1)
     return Signals(
         time=record.time_s[keep],
-        x=d(record.position_m, 0)[keep],
+        x=d(position, 0)[keep],
         v=v_full[keep],
-        a=d(record.position_m, 2)[keep],
+        a=d(position, 2)[keep],
         p_a=d(record.p_a_pa, 0)[keep],
         p_b=d(record.p_b_pa, 0)[keep],
         dp_a=d(record.p_a_pa, 1)[keep],
