@@ -12,6 +12,7 @@ outliers and seed as options).
 from __future__ import annotations
 
 import argparse
+from typing import Any
 
 __all__ = ["HELP", "add_arguments", "run"]
 
@@ -95,7 +96,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def _loader_and_cylinder(args: argparse.Namespace):
+def _loader_and_cylinder(args: argparse.Namespace) -> tuple[Any, Any]:
     from loader_model.identification import EquivalentCylinder
     from loader_model.parameters import resolve_loader_and_load
 
@@ -139,14 +140,20 @@ def _fit(args: argparse.Namespace) -> int:
         result = identify_friction(signals, cylinder, level=args.level)
         text = rep.format_friction(result.fit, signals.time.size)
         updates = rep.friction_updates(result.fit)
-        plot = lambda path: rep.plot_friction_fit(result, path, f"Friction: {args.data}")  # noqa: E731
+
+        def plot(path: str) -> object:
+            return rep.plot_friction_fit(result, path, f"Friction: {args.data}")
+
     else:
         leak = identify_leakage(signals, cylinder, robust=not args.least_squares, level=args.level)
         text = rep.format_leakage(leak, signals.time.size)
         updates = rep.leakage_updates(leak)
-        plot = lambda path: rep.plot_leakage_fit(  # noqa: E731
-            leak, signals, cylinder.area_m2, path, f"Leakage: {args.data}"
-        )
+
+        def plot(path: str) -> object:
+            return rep.plot_leakage_fit(
+                leak, signals, cylinder.area_m2, path, f"Leakage: {args.data}"
+            )
+
     updated = None
     if args.update is not None:
         command = f"{args.identify_action} {args.data}"

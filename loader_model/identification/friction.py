@@ -140,7 +140,7 @@ def fit_friction(
         model and data are filtered alike (:mod:`.pipeline`). ``v`` and ``p_a`` then have the
         unfiltered length n. Default: none (all arrays of one length).
     lags : int
-        Bartlett lags of the covariance (the derivative filter's window for filtered signals).
+        Bartlett lags of the covariance (:mod:`.pipeline` uses four derivative-filter windows).
     level : float
         Confidence level of the intervals.
     tau_s_range, gamma_range : (float, float)
@@ -216,6 +216,14 @@ def fit_friction(
         scale=scale,
         weights=np.ones(n),
         method="least squares, variable projection over (tau_s, gamma)"
+        + "".join(
+            f"; {name} at its search bound {bound:g} s/m (interval not meaningful)"
+            for name, value, low, high in zip(
+                ("tau_s", "gamma"), np.exp(search.x), np.exp(lo), np.exp(hi), strict=True
+            )
+            for bound in (low, high)
+            if abs(np.log(value / bound)) < 1e-6
+        )
         + ("" if smooth is _identity else ", model filtered like the data"),
         level=level,
     )

@@ -150,7 +150,9 @@ def _parse_header(cells: list[str], origin: str) -> dict[str, tuple[int, float]]
     return found
 
 
-def _column(rows, lines, index: int, name: str, origin: str) -> np.ndarray:
+def _column(
+    rows: list[list[str]], lines: list[int], index: int, name: str, origin: str
+) -> np.ndarray:
     values = np.empty(len(rows))
     for row, (cells, line) in enumerate(zip(rows, lines, strict=True)):
         text = cells[index].strip() if index < len(cells) else ""

@@ -24,7 +24,8 @@ Covariances are sandwich estimates for M-estimators (Huber 1981, sec. 7.6),
 
 u_i = r_i/σ, with ψ(u) = u (least squares) or the robust ψ. The Bartlett-weighted lags
 (Newey and West 1987) up to L account for residuals that are correlated over L samples, as
-filtered signals are (L = the derivative filter's window); L = 0 is the classic formula.
+filtered signals are (:mod:`.pipeline` takes L = four filter windows); L = 0 is the classic
+formula.
 Intervals are ±t_{n−p, 1−α/2} standard errors.
 """
 

@@ -129,6 +129,8 @@ class SyntheticRecording:
         ``load_mass`` at the sample times, derivatives from the model's right-hand side.
     cylinder : EquivalentCylinder
         The equivalent cylinder and load model used.
+    parameters : dict of str to float
+        The true friction (:data:`TABLE4` names) and leakage (:data:`TABLE5` names) values.
     """
 
     record: MeasurementRecord
