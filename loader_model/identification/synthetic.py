@@ -273,27 +273,16 @@ def synthesize(
         measured = true + offset + noise * rng.standard_normal(true.size)
         return np.round(measured / step) * step if step > 0.0 else measured
 
-    flow = sense(truth["flow"], sensors.flow_noise_m3_s, sensors.flow_step_m3_s, 0.0)
-    flow += sensors.flow_offset_m3_s
-    outliers = rng.random(flow.size) < sensors.outlier_fraction
+    o = sensors
+    flow = sense(truth["flow"], o.flow_noise_m3_s, o.flow_step_m3_s, o.flow_offset_m3_s)
+    outliers = rng.random(flow.size) < o.outlier_fraction
     flow[outliers] = 0.0
+    pressure = (o.pressure_noise_pa, o.pressure_step_pa, o.pressure_offset_pa)
     record = MeasurementRecord(
         time_s=t_samples,
-        position_m=sense(
-            truth["x"], sensors.position_noise_m, sensors.position_step_m, sensors.position_offset_m
-        ),
-        p_a_pa=sense(
-            truth["p_a"],
-            sensors.pressure_noise_pa,
-            sensors.pressure_step_pa,
-            sensors.pressure_offset_pa,
-        ),
-        p_b_pa=sense(
-            truth["p_b"],
-            sensors.pressure_noise_pa,
-            sensors.pressure_step_pa,
-            sensors.pressure_offset_pa,
-        ),
+        position_m=sense(truth["x"], o.position_noise_m, o.position_step_m, o.position_offset_m),
+        p_a_pa=sense(truth["p_a"], *pressure),
+        p_b_pa=sense(truth["p_b"], *pressure),
         load_mass_kg=truth["load_mass"].copy(),
         flow_m3_s=flow,
     )
