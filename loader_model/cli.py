@@ -18,6 +18,7 @@ COMMANDS: dict[str, str] = {
     "calibrate": "loader_model.commands.calibrate_command",
     "iso2631": "loader_model.commands.iso2631_command",
     "hydraulics": "loader_model.commands.hydraulics_command",
+    "identify": "loader_model.commands.identify_command",
     "reproduce": "loader_model.commands.reproduce_command",
 }
 
