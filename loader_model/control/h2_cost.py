@@ -20,7 +20,7 @@ from typing import Any
 
 import casadi as ca
 import numpy as np
-from scipy.linalg import solve_continuous_lyapunov
+from scipy.linalg import matrix_balance, solve_continuous_lyapunov
 
 from loader_model.control._checks import finite_matrix, symmetric_matrix
 from loader_model.control.design_plant import DesignPlant
@@ -82,14 +82,23 @@ def plant_terms_mx(plant: DesignPlant, k: ca.MX, r: np.ndarray) -> tuple[ca.MX, 
     The Gramian solves the Lyapunov equation in vectorised (Kronecker) form with ``casadi.solve``.
     """
     n = plant.A.shape[0]
-    kc = k @ plant.C_y
-    a_cl = plant.A - plant.B_u @ kc
+    # A diagonal similarity that balances A (exact powers of 2) takes the condition number of
+    # the Kronecker operator of the loader test plant from 2e14 to 3e4; H2 norms are unchanged.
+    _, (scale, _) = matrix_balance(plant.A, permute=False, separate=True)
+    a, b_u, b_w = (
+        plant.A * scale / scale[:, None],
+        plant.B_u / scale[:, None],
+        plant.B_w / scale[:, None],
+    )
+    c_y, c_z, c_e = plant.C_y * scale, plant.C_z * scale, plant.C_e * scale
+    kc = k @ c_y
+    a_cl = a - b_u @ kc
     eye = ca.MX.eye(n)
     operator = ca.kron(eye, a_cl) + ca.kron(a_cl, eye)  # vec(A P + P Aᵀ) = operator vec(P)
-    rhs = -ca.DM(plant.B_w @ plant.B_w.T).reshape((n * n, 1))
+    rhs = -ca.DM(b_w @ b_w.T).reshape((n * n, 1))
     p = ca.reshape(ca.solve(operator, rhs), n, n)
-    c_z = plant.C_z - plant.D_zu @ kc
-    c_e = plant.C_e - plant.D_eu @ kc
+    c_z = c_z - plant.D_zu @ kc
+    c_e = c_e - plant.D_eu @ kc
     cost = plant.weight * (ca.trace(c_z @ p @ c_z.T) + ca.trace(r @ kc @ p @ kc.T))
     return cost, ca.diag(kc @ p @ kc.T), ca.diag(c_e @ p @ c_e.T)
 

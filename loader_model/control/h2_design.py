@@ -140,7 +140,14 @@ def design_h2_gain(
     initial_cost = float(sum(h2_costs(plants, gain0, r)["costs"]))
     gain, stats = _reach_margin(plants, gain0, mask, margin + 0.5 * margin + 0.01)
     if stats is None:
-        gain, stats = _minimise(plants, gain, mask, r, limits, margin, epsilon, ipopt_options)
+        if limits is not None or any(p.e_rms_limits for p in plants):
+            # From starts that violate an r.m.s. bound IPOPT often failed: start the bounded
+            # problem from the unbounded optimum instead (when that one is found).
+            unbounded, check = _minimise(
+                plants, gain, mask, r, None, margin, epsilon, ipopt_options, False
+            )
+            gain = unbounded if check["success"] else gain
+        gain, stats = _minimise(plants, gain, mask, r, limits, margin, epsilon, ipopt_options, True)
     elapsed = time.perf_counter() - started
     return _result(plants, gain, r, limits, initial_cost, margin, stats, elapsed, raise_on_failure)
 
@@ -194,7 +201,7 @@ def _reach_margin(plants, gain0, mask, target, max_evaluations=4000):
     return gain, {"return_status": status, "iter_count": 0}
 
 
-def _minimise(plants, gain0, mask, r, limits, margin, epsilon, ipopt_options):
+def _minimise(plants, gain0, mask, r, limits, margin, epsilon, ipopt_options, bounded):
     """Phase 2: IPOPT on the formulation of the module docstring from a start meeting the margin."""
     k_free, k = gain_expression(gain0, mask)
     blocks = [PlantBlock(plant, gain0, margin, epsilon) for plant in plants]
@@ -207,7 +214,7 @@ def _minimise(plants, gain0, mask, r, limits, margin, epsilon, ipopt_options):
         objective += cost / scale
         if limits is not None:
             inequalities.append(u_var / limits**2)
-        if block.plant.e_rms_limits:
+        if bounded and block.plant.e_rms_limits:
             inequalities.append(e_var / np.asarray(block.plant.e_rms_limits) ** 2)
     x = ca.vertcat(k_free, *[v for b in blocks for v in (b.l_cost, b.l_cert)])
     x0 = np.concatenate([gain0[mask], *[v for b in blocks for v in (b.guess_cost, b.guess_cert)]])
