@@ -12,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from loader_model.control import _sof_derivatives as eq42
 from loader_model.control._checks import (
     finite_matrix,
     gain_mask,
@@ -19,7 +20,6 @@ from loader_model.control._checks import (
     spectral_abscissa,
     symmetric_matrix,
 )
-from loader_model.control._lyapunov import SchurLyapunov
 
 __all__ = ["NoStabilisingGainError", "OutputFeedbackResult", "output_feedback_lqr"]
 
@@ -72,50 +72,6 @@ class OutputFeedbackResult:
         )
 
 
-def _evaluate(a, b, c, k, q, r, x0, need_s=True):
-    """Cost, P, S and Schur solver of the closed loop A − B K C; None when it is not Hurwitz."""
-    solver = SchurLyapunov(a - b @ k @ c)
-    if solver.abscissa >= 0.0:
-        return None
-    weight = q + c.T @ k.T @ r @ k @ c
-    p = solver.observability(-weight)
-    s = solver.controllability(-x0) if need_s else None
-    return 0.5 * float(np.sum(p * x0)), p, s, weight, solver
-
-
-def _residuals(a_c, b, c, k, r, x0, p, s, weight, mask):
-    def relative(residual, *terms):
-        return float(np.linalg.norm(residual) / max(sum(np.linalg.norm(t) for t in terms), 1e-300))
-
-    norm_a = np.linalg.norm(a_c)
-    r_p = relative(a_c.T @ p + p @ a_c + weight, norm_a * p, norm_a * p, weight)
-    r_s = relative(a_c @ s + s @ a_c.T + x0, norm_a * s, norm_a * s, x0)
-    left, right = r @ k @ c @ s @ c.T, b.T @ p @ s @ c.T
-    return (r_p, r_s, relative(np.where(mask, left - right, 0.0), left, right)), left - right
-
-
-def _hessian(b, c, k, r, p, s, solver, mask):
-    """Exact Hessian of J on the free entries: the derivative of the gradient along each entry.
-
-    Along a gain direction E, with dA_c = −B E C, dP and dS solve the differentiated Lyapunov
-    equations of Eq. 42 and dG = R E C S Cᵀ + R K C dS Cᵀ − Bᵀ dP S Cᵀ − Bᵀ P dS Cᵀ.
-    """
-    free = np.argwhere(mask.T)[:, ::-1]  # column-major order, matching ravel(order="F")
-    columns = []
-    css = c @ s @ c.T
-    for i, j in free:
-        e = np.zeros_like(k)
-        e[i, j] = 1.0
-        d_a = -b @ e @ c
-        term = c.T @ e.T @ r @ k @ c
-        d_p = solver.observability(-(d_a.T @ p + p @ d_a + term + term.T))
-        d_s = solver.controllability(-(d_a @ s + s @ d_a.T))
-        d_g = r @ e @ css + r @ k @ c @ d_s @ c.T - b.T @ (d_p @ s + p @ d_s) @ c.T
-        columns.append(d_g.ravel(order="F")[mask.ravel(order="F")])
-    hessian = np.array(columns).T
-    return 0.5 * (hessian + hessian.T)
-
-
 def _descent(a, b, c, q, r, x0, k, mask, rtol, max_iterations, history, newton=True):
     """Newton or Moerder-Calise steps with Armijo backtracking (monotone, stays stabilising).
 
@@ -126,11 +82,11 @@ def _descent(a, b, c, q, r, x0, k, mask, rtol, max_iterations, history, newton=T
     with a rounding allowance of 1e-14 |J| so that Newton can polish where J is flat to rounding).
     """
     free = mask.ravel(order="F")
-    cost, p, s, weight, solver = _evaluate(a, b, c, k, q, r, x0)
+    cost, p, s, weight, solver = eq42.evaluate(a, b, c, k, q, r, x0)
     history.append(cost)
     flat = 0
     for iteration in range(max_iterations + 1):
-        residuals, gradient = _residuals(a - b @ k @ c, b, c, k, r, x0, p, s, weight, mask)
+        residuals, gradient = eq42.residuals(a - b @ k @ c, b, c, k, r, x0, p, s, weight, mask)
         if residuals[2] <= 1e-3 * rtol:
             break  # polished: iterations go on past rtol while the cost still decreases
         if iteration == max_iterations:
@@ -144,7 +100,7 @@ def _descent(a, b, c, q, r, x0, k, mask, rtol, max_iterations, history, newton=T
         direction = None
         if newton:
             try:
-                hessian = _hessian(b, c, k, r, p, s, solver, mask)
+                hessian = eq42.hessian(b, c, k, r, p, s, solver, mask)
                 direction = (
                     -np.linalg.solve(hessian, g)
                     if np.all(np.linalg.eigvalsh(hessian) > 0)
@@ -160,7 +116,7 @@ def _descent(a, b, c, q, r, x0, k, mask, rtol, max_iterations, history, newton=T
         slope = float(np.sum(gradient * step))
         alpha, trial = 1.0, None
         while alpha > 1e-14:
-            trial = _evaluate(a, b, c, k + alpha * step, q, r, x0, need_s=False)
+            trial = eq42.evaluate(a, b, c, k + alpha * step, q, r, x0, need_s=False)
             if trial is not None and trial[0] <= cost + 1e-4 * alpha * slope + 1e-14 * abs(cost):
                 break
             trial, alpha = None, 0.5 * alpha
@@ -168,7 +124,7 @@ def _descent(a, b, c, q, r, x0, k, mask, rtol, max_iterations, history, newton=T
         if trial is None or flat > 3:
             break  # no decrease within rounding: the stationary point is reached numerically
         k = k + alpha * step
-        cost, p, s, weight, solver = _evaluate(a, b, c, k, q, r, x0)
+        cost, p, s, weight, solver = eq42.evaluate(a, b, c, k, q, r, x0)
         history.append(cost)
     return k, (p, s), residuals, iteration, residuals[2] <= rtol
 
