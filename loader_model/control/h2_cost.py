@@ -106,12 +106,26 @@ def plant_terms_mx(plant: DesignPlant, k: ca.MX, r: np.ndarray) -> tuple[ca.MX, 
 def h2_cost_function(
     plants: Sequence[DesignPlant] | DesignPlant, effort_weight: Any = None
 ) -> ca.Function:
-    """J(K) of the module docstring as a CasADi Function ``h2_cost``: input ``K`` (m x p),
-    outputs ``J`` (scalar) and ``J_plants`` (one weighted cost per plant).
+    """J(K) of the module docstring as a CasADi Function ``h2_cost``.
 
-    The Lyapunov equations are solved in vectorised (Kronecker) form with ``casadi.solve``, so
-    the Function can be differentiated to any order by CasADi's AD; it is meaningful only where
-    every closed loop is Hurwitz (elsewhere it returns the indefinite Lyapunov solution).
+    Parameters
+    ----------
+    plants
+        One or more :class:`DesignPlant` sharing the gain shape (m, p).
+    effort_weight
+        R (m x m, symmetric ⪰ 0) of the effort term; default 0.
+
+    Returns
+    -------
+    casadi.Function
+        Input ``K`` (m x p); outputs ``J`` (scalar) and ``J_plants`` (weighted cost per plant).
+
+    Notes
+    -----
+    The Lyapunov equations are solved in vectorised (Kronecker) form with ``casadi.solve`` on
+    balanced states, so the Function can be differentiated to any order by CasADi's AD. It is
+    meaningful only where every closed loop is Hurwitz (elsewhere it returns the indefinite
+    Lyapunov solution); :func:`h2_costs` checks stability.
     """
     plants, r = check_plants(plants, effort_weight)
     k = ca.MX.sym("K", *plants[0].gain_shape)

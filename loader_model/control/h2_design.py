@@ -22,10 +22,15 @@ iterates: with P free, IPOPT diverged to unstable points where the indefinite Ly
 solution makes the cost arbitrarily negative (DESIGN.md, Performance). A log-det barrier was
 not used: it needs a strictly feasible start and returns no multiplier for an active margin.
 
-The certificate makes the feasible set open: near the margin boundary Π grows without bound
-and IPOPT slows down. A warm start closer than δ = 0.5 σ + 0.01 to the margin (or unstable) is
-therefore first moved to margin σ + δ by a Nelder-Mead search on the spectral abscissa
-max_i max Re λ(A_cl,i) (phase 1, numpy); IPOPT then starts from an exactly feasible point.
+The certificate alone makes the feasible set open: towards the margin boundary Π grows without
+bound, so an active margin would have no minimiser. The inequality tr(Π)/n ≤ 100 (in states
+scaled so that Π has unit diagonal at the start) closes it; with the margin active the result's
+margin is then slightly above σ. A warm start closer than δ = 0.5 σ + 0.01 to the margin (or
+unstable) is first moved to margin σ + δ by a Nelder-Mead search on the spectral abscissa
+max_i max Re λ(A_cl,i) (phase 1, numpy), so IPOPT starts from an exactly feasible point.
+States are scaled by the diagonal of the warm-start certificate (a similarity), the equalities
+by the size of their constant terms, and IPOPT is retried with other barrier settings if it
+fails (:data:`IPOPT_ATTEMPTS`); the formulation is non-convex, so the result is a local optimum.
 After the solve, stability and margin are checked with numpy eigenvalues.
 """
 
@@ -120,6 +125,20 @@ def design_h2_gain(
     raise_on_failure
         Raise :class:`H2DesignError` when IPOPT fails or the numpy check misses the margin;
         otherwise return the result with ``success`` False.
+
+    Returns
+    -------
+    H2DesignResult
+        Gain, total and per-plant cost (checked with scipy), poles per plant, achieved margin
+        min_i(−max Re λ_i), r.m.s. values, IPOPT status, iterations and wall time.
+
+    Raises
+    ------
+    H2DesignError
+        With ``raise_on_failure``, when IPOPT fails (after the retries), phase 1 cannot reach
+        the margin, or the eigenvalue check or an r.m.s. bound fails.
+    ValueError
+        For malformed arguments (shapes, non-finite values, mask, margin, limits).
     """
     plants, r = check_plants(plants, effort_weight)
     shape = plants[0].gain_shape

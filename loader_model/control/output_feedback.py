@@ -227,10 +227,15 @@ def output_feedback_lqr(
 
     Notes
     -----
-    Each iteration takes the Moerder-Calise step (the minimiser over K of the stationarity
-    condition with P, S frozen; on free entries only when masked), a preconditioned gradient
-    direction, and backtracks until the closed loop is Hurwitz and the Armijo condition holds,
-    so the cost decreases monotonically and every iterate is stabilising.
+    Each iteration takes the Newton step of J on the free entries (exact Hessian from the
+    differentiated Eq. 42) where the Hessian is positive definite, else the Moerder-Calise step
+    (the minimiser over K of the stationarity condition with P, S frozen, a preconditioned
+    gradient direction), and backtracks until the closed loop is Hurwitz and the Armijo condition
+    holds, so every iterate is stabilising and the cost never increases (up to a rounding
+    allowance of 1e-14 |J|). Without a stabilising initial gain, a shifted-system homotopy lowers
+    the spectral abscissa first: with α = max Re λ(A − B K C) and s = α + δ, Moerder-Calise steps
+    on the cost of the shifted system A − s I (finite there) push the slowest poles left; this is
+    repeated until α < 0, or :class:`NoStabilisingGainError` is raised when α stalls.
     """
     a, b, c, d, in_names, out_names = select_channels(system, inputs, outputs)
     n, m, p = a.shape[0], b.shape[1], c.shape[0]
