@@ -176,7 +176,7 @@ def test_design_plant_rejects_noise_feedthrough(systems) -> None:
         )
 
 
-def test_output_feedback_lqr_on_the_loader_plant(systems) -> None:  # noqa: ANN001
+def test_output_feedback_lqr_on_the_loader_plant(systems) -> None:
     sys = systems["full"]
     c_z, b_w = np.asarray(sys.C), np.asarray(sys.B)[:, 1:]
     result = output_feedback_lqr(sys, c_z.T @ c_z, EFFORT, b_w @ b_w.T, inputs=["u"], outputs=Y)

@@ -13,7 +13,16 @@ from loader_model.control._lyapunov import SchurLyapunov
 __all__ = ["evaluate", "hessian", "residuals"]
 
 
-def evaluate(a, b, c, k, q, r, x0, need_s=True):
+def evaluate(
+    a: np.ndarray,
+    b: np.ndarray,
+    c: np.ndarray,
+    k: np.ndarray,
+    q: np.ndarray,
+    r: np.ndarray,
+    x0: np.ndarray,
+    need_s: bool = True,
+) -> tuple[float, np.ndarray, np.ndarray | None, np.ndarray, SchurLyapunov] | None:
     """Cost, P, S and Schur solver of the closed loop A − B K C; None when it is not Hurwitz."""
     solver = SchurLyapunov(a - b @ k @ c)
     if solver.abscissa >= 0.0:
@@ -24,8 +33,19 @@ def evaluate(a, b, c, k, q, r, x0, need_s=True):
     return 0.5 * float(np.sum(p * x0)), p, s, weight, solver
 
 
-def residuals(a_c, b, c, k, r, x0, p, s, weight, mask):
-    def relative(residual, *terms):
+def residuals(
+    a_c: np.ndarray,
+    b: np.ndarray,
+    c: np.ndarray,
+    k: np.ndarray,
+    r: np.ndarray,
+    x0: np.ndarray,
+    p: np.ndarray,
+    s: np.ndarray,
+    weight: np.ndarray,
+    mask: np.ndarray,
+) -> tuple[tuple[float, float, float], np.ndarray]:
+    def relative(residual: np.ndarray, *terms: np.ndarray) -> float:
         return float(np.linalg.norm(residual) / max(sum(np.linalg.norm(t) for t in terms), 1e-300))
 
     norm_a = np.linalg.norm(a_c)
@@ -35,7 +55,16 @@ def residuals(a_c, b, c, k, r, x0, p, s, weight, mask):
     return (r_p, r_s, relative(np.where(mask, left - right, 0.0), left, right)), left - right
 
 
-def hessian(b, c, k, r, p, s, solver, mask):
+def hessian(
+    b: np.ndarray,
+    c: np.ndarray,
+    k: np.ndarray,
+    r: np.ndarray,
+    p: np.ndarray,
+    s: np.ndarray,
+    solver: SchurLyapunov,
+    mask: np.ndarray,
+) -> np.ndarray:
     """Exact Hessian of J on the free entries: the derivative of the gradient along each entry.
 
     Along a gain direction E, with dA_c = −B E C, dP and dS solve the differentiated Lyapunov

@@ -179,7 +179,13 @@ class _Reached(Exception):
     pass
 
 
-def _reach_margin(plants, gain0, mask, target, max_evaluations=4000):
+def _reach_margin(
+    plants: Sequence[DesignPlant],
+    gain0: np.ndarray,
+    mask: np.ndarray,
+    target: float,
+    max_evaluations: int = 4000,
+) -> tuple[np.ndarray, dict[str, Any] | None]:
     """Phase 1: the warm start, or a gain from a Nelder-Mead search with max Re λ ≤ −target.
 
     Returns (gain, None) on success, (best gain, stats naming the failure) otherwise.
@@ -220,7 +226,17 @@ def _reach_margin(plants, gain0, mask, target, max_evaluations=4000):
     return gain, {"return_status": status, "iter_count": 0}
 
 
-def _minimise(plants, gain0, mask, r, limits, margin, epsilon, ipopt_options, bounded):
+def _minimise(
+    plants: Sequence[DesignPlant],
+    gain0: np.ndarray,
+    mask: np.ndarray,
+    r: np.ndarray,
+    limits: np.ndarray | None,
+    margin: float,
+    epsilon: float,
+    ipopt_options: dict[str, Any] | None,
+    bounded: bool,
+) -> tuple[np.ndarray, dict[str, Any]]:
     """Phase 2: IPOPT on the formulation of the module docstring from a start meeting the margin."""
     k_free, k = gain_expression(gain0, mask)
     blocks = [PlantBlock(plant, gain0, margin, epsilon) for plant in plants]
@@ -258,7 +274,17 @@ def _minimise(plants, gain0, mask, r, limits, margin, epsilon, ipopt_options, bo
     return gain, {**solver.stats(), "attempts": IPOPT_ATTEMPTS.index(settings) + 1}
 
 
-def _result(plants, gain, r, limits, initial_cost, margin, stats, elapsed, raise_on_failure):
+def _result(
+    plants: Sequence[DesignPlant],
+    gain: np.ndarray,
+    r: np.ndarray,
+    limits: np.ndarray | None,
+    initial_cost: float,
+    margin: float,
+    stats: dict[str, Any],
+    elapsed: float,
+    raise_on_failure: bool,
+) -> H2DesignResult:
     check = h2_costs(plants, gain, r)
     achieved = float(min(-np.max(p.real) for p in check["poles"]))
     status = str(stats["return_status"])

@@ -72,7 +72,20 @@ class OutputFeedbackResult:
         )
 
 
-def _descent(a, b, c, q, r, x0, k, mask, rtol, max_iterations, history, newton=True):
+def _descent(
+    a: np.ndarray,
+    b: np.ndarray,
+    c: np.ndarray,
+    q: np.ndarray,
+    r: np.ndarray,
+    x0: np.ndarray,
+    k: np.ndarray,
+    mask: np.ndarray,
+    rtol: float,
+    max_iterations: int,
+    history: list[float],
+    newton: bool = True,
+) -> tuple[np.ndarray, tuple[np.ndarray, np.ndarray], tuple[float, float, float], int, bool]:
     """Newton or Moerder-Calise steps with Armijo backtracking (monotone, stays stabilising).
 
     The Moerder-Calise step solves the stationarity condition with P and S frozen on the free
@@ -129,7 +142,14 @@ def _descent(a, b, c, q, r, x0, k, mask, rtol, max_iterations, history, newton=T
     return k, (p, s), residuals, iteration, residuals[2] <= rtol
 
 
-def _stabilise(a, b, c, k, mask, max_rounds=200):
+def _stabilise(
+    a: np.ndarray,
+    b: np.ndarray,
+    c: np.ndarray,
+    k: np.ndarray,
+    mask: np.ndarray,
+    max_rounds: int = 200,
+) -> np.ndarray:
     """Shifted-system homotopy: lower the spectral abscissa α(A − B K C) below zero.
 
     With α the current abscissa and shift s = α + δ, the shifted loop A − s I − B K C is
