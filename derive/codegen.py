@@ -35,7 +35,7 @@ class CasadiPrinter(PythonCodePrinter):
             return f"1 / ca.sqrt({self._print(base)})"
         if exponent == 2:
             printed = self._print(base)
-            return f"{printed} * {printed}" if base.is_Atom else f"({printed}) ** 2"
+            return f"({printed} * {printed})" if base.is_Atom else f"({printed}) ** 2"
         return super()._print_Pow(expr, rational=rational)
 
     def _print_Max(self, expr: sp.Max) -> str:
@@ -105,6 +105,9 @@ class FunctionSpec:
     """(name, description) of outputs computed only in the epilogue."""
     return_names: tuple[str, ...] | None = None
     """Output variables returned, in order (default: all printed outputs)."""
+    definitions: tuple[tuple[sp.Symbol, sp.Expr], ...] = ()
+    """Named intermediates, printed in order before the outputs (each with its own CSE); the
+    outputs and later definitions may use their symbols."""
 
 
 def _count_ops(expressions: Sequence[sp.Expr]) -> int:
@@ -120,8 +123,21 @@ def emit_function(spec: FunctionSpec, header: str) -> str:
     replacements, reduced = sp.cse(
         flat, symbols=sp.numbered_symbols("_t"), order="canonical", ignore=()
     )
-    used = set().union(*(expr.free_symbols for expr in [*reduced, *(r for _, r in replacements)]))
-    ops = _count_ops([r for _, r in replacements]) + _count_ops(reduced)
+    definition_lines: list[str] = []
+    definition_ops = 0
+    defined = {symbol for symbol, _ in spec.definitions}
+    expressions = [*reduced, *(r for _, r in replacements)]
+    for index, (symbol, expression) in enumerate(spec.definitions):
+        inner, (body,) = sp.cse(
+            [expression], symbols=sp.numbered_symbols(f"_d{index}_"), order="canonical"
+        )
+        for temporary, value in inner:
+            definition_lines.append(f"    {temporary.name} = {printer.doprint(value)}")
+        definition_lines.append(f"    {symbol.name} = {printer.doprint(body)}")
+        definition_ops += _count_ops([v for _, v in inner]) + _count_ops([body])
+        expressions += [body, *(v for _, v in inner)]
+    used = set().union(*(expr.free_symbols for expr in expressions)) - defined
+    ops = _count_ops([r for _, r in replacements]) + _count_ops(reduced) + definition_ops
 
     lines = [header.format(ops=ops), f'"""{spec.summary}', "", spec.details.strip(), '"""', ""]
     lines += ["from __future__ import annotations", "", "import casadi as ca", "", ""]
@@ -147,6 +163,7 @@ def emit_function(spec: FunctionSpec, header: str) -> str:
         for index, symbol in enumerate(item.symbols):
             if symbol in used:
                 lines.append(f"    {symbol.name} = {item.name}[{index}]")
+    lines += definition_lines
     for symbol, expression in replacements:
         lines.append(f"    {symbol.name} = {printer.doprint(expression)}")
     cursor = 0

@@ -90,4 +90,4 @@ def sliding_fraction(force_magnitude: sp.Expr, limit: sp.Expr) -> sp.Expr:
     """σ: C¹ smoothstep of z = |F_x| / L from 0 at z = β to 1 at z = 1 (module docstring)."""
     beta = STICK_FRACTION
     u = (force_magnitude / limit - beta) / (1 - beta)
-    return sp.Piecewise((0, u <= 0), (1, u >= 1), (3 * u**2 - 2 * u**3, True))
+    return sp.Piecewise((0, u <= 0), (1, u >= 1), (3 * u**2 - 2 * u**3, True), evaluate=False)

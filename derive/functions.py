@@ -169,6 +169,7 @@ def function_specs(mech: LoaderMechanics) -> list[FunctionSpec]:
             epilogue="    pdd = ca.solve(M, rhs)",
             extra_outputs=(("pdd", "(4,) accelerations p̈ [m/s², m/s², rad/s², rad/s²]"),),
             return_names=("pdd", "anchor_rate"),
+            definitions=mech.contact_definitions,
         ),
         FunctionSpec(
             "tyre_contact",
@@ -183,6 +184,7 @@ def function_specs(mech: LoaderMechanics) -> list[FunctionSpec]:
                 ),
                 OutputSpec("anchor_rate", mech.anchor_rates, "(2,) anchor rates ξ̇ [m/s]"),
             ),
+            definitions=mech.contact_definitions,
         ),
         FunctionSpec(
             "point_positions",

@@ -81,6 +81,9 @@ class LoaderMechanics:
     """D(p, ṗ, ẇ): tyre damper forces, Eq. 1-4 and 25 (left-hand side)."""
     contact_tyre_forces: sp.Matrix
     """Generalised tyre forces (right-hand side) of the contact law of :mod:`derive.contact`."""
+    contact_definitions: tuple[tuple[sp.Symbol, sp.Expr], ...]
+    """Ordered intermediates (F_y_A, F_x_A, sigma_A, ...) of the contact law, in terms of the
+    inputs and earlier intermediates; the contact outputs are written in these symbols."""
     tyre_forces: sp.Matrix
     """(F_Ax, F_Ay, F_Bx, F_By): world-frame forces of the road on each axle, contact law."""
     anchor_rates: sp.Matrix
@@ -165,6 +168,7 @@ def derive_mechanics() -> LoaderMechanics:
     contact = sp.zeros(4, 1)
     tyre_forces: list[sp.Expr] = []
     anchor_rates: list[sp.Expr] = []
+    definitions: list[tuple[sp.Symbol, sp.Expr]] = []
     mu, width, tau = P("mu_road"), P("F_transition"), P("tau_slip")
     for index, (axle, offset) in enumerate((("A", 0), ("B", 2))):
         deflection = positions[axle] - _point(axle) - ROAD[offset : offset + 2, 0]
@@ -177,12 +181,20 @@ def derive_mechanics() -> LoaderMechanics:
         dampers -= jacobian(axle).T * damper
         # Contact law of derive.contact: unilateral vertical force; horizontal spring anchored
         # at ξ with a load-faded damper, the anchor sliding with the fraction σ of the friction
-        # limit's use (and in the air).
-        vertical = unilateral(spring[1] + damper[1], width)
-        limit = mu * vertical + MINIMUM_FRICTION_LIMIT_N
+        # limit's use (and in the air). Each law's result is a named intermediate (emitted in
+        # order by the code generator), so that no Piecewise is nested in another's condition.
+        vertical, horizontal, sliding = (
+            sp.Symbol(f"{name}_{axle}", real=True) for name in ("F_y", "F_x", "sigma")
+        )
         stretch = deflection[0] - ANCHORS[index]
-        horizontal = -k_x * stretch - contact_factor(vertical, width) * c_x * slip[0]
-        sliding = sliding_fraction(sp.Abs(horizontal), limit)
+        definitions += [
+            (vertical, unilateral(spring[1] + damper[1], width)),
+            (horizontal, -k_x * stretch - contact_factor(vertical, width) * c_x * slip[0]),
+            (
+                sliding,
+                sliding_fraction(sp.Abs(horizontal), mu * vertical + MINIMUM_FRICTION_LIMIT_N),
+            ),
+        ]
         contact += jacobian(axle).T * sp.Matrix([horizontal, vertical])
         tyre_forces += [horizontal, vertical]
         anchor_rates.append(sliding * (slip[0] + stretch / tau))
@@ -215,6 +227,7 @@ def derive_mechanics() -> LoaderMechanics:
         tyre_spring_forces=springs,
         tyre_damper_forces=dampers,
         contact_tyre_forces=contact,
+        contact_definitions=tuple(definitions),
         tyre_forces=sp.Matrix(tyre_forces),
         anchor_rates=sp.Matrix(anchor_rates),
         actuator_map=actuator_map,
