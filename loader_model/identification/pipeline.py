@@ -69,8 +69,8 @@ class Signals:
         Savitzky-Golay window in samples.
     cutoff_hz : float
         Its −3 dB cutoff request in Hz.
-    v_full, p_a_raw, p_b_raw, load_mass_raw : numpy.ndarray
-        Untrimmed v̂, raw p_A, p_B and load mass (for the friction equation, see
+    x_full, v_full, p_a_raw, p_b_raw, load_mass_raw : numpy.ndarray
+        Untrimmed x̂, v̂, raw p_A, p_B and load mass (for the friction equation, see
         :meth:`smooth`).
     keep : slice
         The samples kept after trimming the filter's ends.
@@ -87,6 +87,7 @@ class Signals:
     load_mass: np.ndarray
     window: int
     cutoff_hz: float
+    x_full: np.ndarray
     v_full: np.ndarray
     p_a_raw: np.ndarray
     p_b_raw: np.ndarray
@@ -127,10 +128,10 @@ def prepare_signals(
         return savgol_derivative(signal, fs, order, window)
 
     keep = slice(window // 2, record.time_s.size - window // 2)
-    v_full = d(position, 1)
+    x_full, v_full = d(position, 0), d(position, 1)
     return Signals(
         time=record.time_s[keep],
-        x=d(position, 0)[keep],
+        x=x_full[keep],
         v=v_full[keep],
         a=d(position, 2)[keep],
         p_a=d(record.p_a_pa, 0)[keep],
@@ -140,6 +141,7 @@ def prepare_signals(
         load_mass=record.load_mass_kg[keep],
         window=window,
         cutoff_hz=cutoff_hz,
+        x_full=x_full,
         v_full=v_full,
         p_a_raw=record.p_a_pa,
         p_b_raw=record.p_b_pa,
@@ -166,19 +168,21 @@ class FrictionResult:
 def identify_friction(
     signals: Signals, cylinder: EquivalentCylinder, level: float = 0.95
 ) -> FrictionResult:
-    """Table 4 from filtered signals: F_f by Eq. 44 (corrected), fit of Eq. 46."""
+    """Table 4 from filtered signals: F_f by Eq. 44 (corrected), fit of Eq. 46.
+
+    F_L and m_eq take the lever at each sample's boom angle (:mod:`.equivalent`), with the
+    h'/h² ẋ² term of the turning boom; the chassis is taken at rest.
+    """
     s = signals
-    smoothed = s.smooth(
-        np.column_stack((s.p_a_raw, s.p_b_raw, cylinder.load_force(s.load_mass_raw)))
-    )
+    load_force = cylinder.load_force(s.load_mass_raw, s.x_full)
+    smoothed = s.smooth(np.column_stack((s.p_a_raw, s.p_b_raw, load_force)))
     measured = measured_friction(
         cylinder.area_m2,
         cylinder.alpha,
         smoothed[:, 0],
         smoothed[:, 1],
         smoothed[:, 2],
-        cylinder.inertia(s.load_mass),
-        s.a,
+        cylinder.inertial_force(s.load_mass, s.x, s.v, s.a),
     )
     fit = fit_friction(
         signals.v_full,
