@@ -148,7 +148,9 @@ class SyntheticRecording:
         What the sensors logged (write it with ``write_measurement_csv(path, record.columns())``).
     truth : dict of str to numpy.ndarray
         True ``x``, ``v``, ``a`` (ẍ), ``p_a``, ``p_b``, ``dp_a`` (ṗ_A), ``flow`` (Q_pump),
-        ``force`` (F_act), ``phi`` (boom angle from the static one) and ``load_mass`` at the
+        ``force`` (F_act), ``phi`` (boom angle from the static one), ``theta_1`` and
+        ``thetadd_1`` (chassis pitch and its acceleration), ``command`` (V_p,ref) and
+        ``load_mass`` at the
         sample times, from the plant's state and right-hand side; ``outliers`` (1: dropped).
     cylinder : EquivalentCylinder
         The equivalent cylinder of the loader and load case (what an estimator would use).
@@ -246,6 +248,8 @@ def _lift_functions() -> tuple[ca.Function, ca.Function]:
                 y[out["Q_pump"]],
                 y[out["F_act"]],
                 y[out["phi"]],
+                x[STATE_NAMES.index("theta_1")],
+                y[out["thetadd_1"]],
                 command,
             )
         ],
@@ -255,7 +259,20 @@ def _lift_functions() -> tuple[ca.Function, ca.Function]:
     return ode, truth
 
 
-_TRUTH_NAMES = ("x", "v", "a", "p_a", "p_b", "dp_a", "flow", "force", "phi", "command")
+_TRUTH_NAMES = (
+    "x",
+    "v",
+    "a",
+    "p_a",
+    "p_b",
+    "dp_a",
+    "flow",
+    "force",
+    "phi",
+    "theta_1",
+    "thetadd_1",
+    "command",
+)
 
 
 def _load_case(load: BucketLoad, mass: float) -> BucketLoad:
