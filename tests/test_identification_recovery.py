@@ -82,6 +82,22 @@ def _relative(values: np.ndarray, truth: np.ndarray) -> np.ndarray:
     return np.abs(values / truth - 1.0)
 
 
+def test_record_starts_in_the_plants_static_equilibrium(clean: SyntheticRecording) -> None:
+    from loader_model.parameters import bucket_load, default_loader
+    from loader_model.plant.equilibrium import static_state
+    from loader_model.plant.plant_parameters import plant_parameter_vector
+
+    mass = float(clean.record.load_mass_kg[0])
+    full = bucket_load("full")
+    load = dataclasses.replace(full, mass=mass, inertia=full.inertia * mass / full.mass)
+    x0, u0 = static_state(plant_parameter_vector(default_loader(), load))
+    shaft_speed = default_loader().pump.shaft_speed
+    assert clean.truth["p_a"][0] == pytest.approx(x0[10], rel=1e-12)
+    assert clean.truth["flow"][0] == pytest.approx(shaft_speed * u0, rel=1e-12)
+    # the recorded flow is Q_pump plus the sensor's offset (Table 5's C by default)
+    assert clean.record.flow_m3_s[0] == pytest.approx(shaft_speed * u0 + TABLE5["C"], rel=1e-12)
+
+
 def test_plant_friction_is_eq_46_with_table_4(clean: SyntheticRecording) -> None:
     # The plant's own friction, A_p (p_A − α p_B) − F_act, fitted by the estimator's Eq. 46:
     # the plant and the estimator share the model and the default file is Table 4.

@@ -8,7 +8,8 @@ filter (:func:`~.derivatives.acceleration_kernel`) is applied to p_A, p_B and F_
 measured friction is h₂ ∗ F_f. The friction model of Eq. 46 is evaluated at the smoothed
 velocity v̂ and the raw p_A and then filtered with h₂ too (``Signals.smooth``), so model and
 measurement went through the same kernel. With the plain smoothing filter on p_A, p_B instead,
-the synthetic test's noise-free record (10 Hz cutoff) left a 440 N residual and biased f_s by
+the noise-free record of the former stand-in cylinder model (before the records came from the
+plant) (10 Hz cutoff) left a 440 N residual and biased f_s by
 −53 % and γ by +54 %; with h₂, 1.4 N and below 0.1 %. A less smoothed velocity in the model
 (derivative cutoff 2, 4, 8 times higher) did not lower that further but let velocity noise bias
 τ_s (mean over 6 noisy records: +0.1 %, +2.7 %, +11 %, against −0.4 % with v̂).
@@ -19,9 +20,10 @@ the robust fit could no longer single it out. Half a window is dropped at each e
 end effects).
 
 Residuals of filtered signals are correlated, so the covariances add Bartlett-weighted lags
-(:mod:`.regression`) up to :data:`COVARIANCE_LAGS_PER_WINDOW` windows. Chosen on the synthetic
-records: with one window the friction standard errors were 1.3-1.9 times the scatter of the
-estimates over 28 seeds (intervals too wide, coverage 100 %); with four they match it within
+(:mod:`.regression`) up to :data:`COVARIANCE_LAGS_PER_WINDOW` windows. Chosen on the stand-in
+model's records (the friction fit is not meaningful on plant records, see the README): with
+one window the friction standard errors were 1.3-1.9 times the scatter of the estimates over
+28 seeds (intervals too wide, coverage 100 %); with four they match it within
 about 20 %. The leakage errors hardly change (its residual is mostly white flow noise).
 """
 

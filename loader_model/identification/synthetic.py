@@ -39,7 +39,6 @@ from __future__ import annotations
 import dataclasses
 from dataclasses import dataclass, field
 from functools import cache
-from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -280,7 +279,9 @@ def _load_case(load: BucketLoad, mass: float) -> BucketLoad:
     return dataclasses.replace(load, mass=float(mass), inertia=load.inertia * mass / load.mass)
 
 
-def _parameter_columns(loader: LoaderParameters, load: BucketLoad, masses: np.ndarray) -> Any:
+def _parameter_columns(
+    loader: LoaderParameters, load: BucketLoad, masses: np.ndarray
+) -> np.ndarray:
     """Plant parameter vectors, one column per sample (distinct masses computed once)."""
     from loader_model.plant.plant_parameters import plant_parameter_vector
 
