@@ -27,7 +27,10 @@ against an 80-110 kN load force, and the equivalent cylinder of Eq. 44 takes the
 rest: on its tyres the chassis pitches under the moving boom, which the record does not show.
 With the lever at each sample the model F_L + m_eq ẍ misses the plant's cylinder force by
 0.9-1.8 kN r.m.s. (constant lever: 13-16 kN); the chassis pitch acceleration, not in the
-record, explains all but 0.19 kN of it.
+record, explains all but 0.19 kN of it. Even with that oracle correction (exact signals, 6
+cycles) the fit missed Table 4 by f_s −84 %, τ_s −14 %, γ +417 %, f_C −69 %, f_v +42 %: the
+Stribeck part is a few hundred newtons at these speeds, so the equivalent model would have
+to be good to well below 0.2 kN.
 """
 
 from __future__ import annotations
