@@ -87,3 +87,33 @@ def test_boom_angle_record_gives_the_same_signals(tmp_path: Path) -> None:
     # Interpolation on a 6 µrad grid: positions agree to about 0.1 µm.
     np.testing.assert_allclose(from_angle.x, from_position.x, rtol=0, atol=1e-6)
     np.testing.assert_allclose(from_angle.v, from_position.v, rtol=0, atol=1e-4)
+
+
+@pytest.mark.parametrize("turn", [-0.05, 0.3, 0.7])
+def test_lever_load_force_and_inertia_at_each_boom_angle_match_the_generated_model(
+    turn: float,
+) -> None:
+    # The per-sample equivalent cylinder (F_L, m_eq and the lever at the boom angle of each
+    # piston position) against the generated kinematics and mass matrix, chassis at rest.
+    load = bucket_load("full")
+    loader = default_loader()
+    cylinder = EquivalentCylinder.from_parameters(loader, load)
+    model = LoaderDynamics.from_parameters(None, "full")
+    p = np.array([0.0, 0.0, 0.0, turn])
+    kinematics = model.cylinder_kinematics(p)
+    position = np.array([kinematics["x_cyl"] - loader.cylinders.retracted_length])
+    angle, lever, slope = cylinder._lever(position)
+    assert float(angle[0]) == pytest.approx(turn, abs=1e-12)
+    assert float(lever[0]) == pytest.approx(kinematics["dx_cyl_dphi"], rel=1e-10)
+    points = model.point_positions(p)
+    moment = model.parameter("g") * model.parameter("m_2") * (points["G"][0] - points["D"][0])
+    force = cylinder.load_force(np.array([load.mass]), position)
+    assert float(force[0]) == pytest.approx(moment / kinematics["dx_cyl_dphi"], rel=1e-9)
+    inertia = cylinder.inertia(np.array([load.mass]), position)
+    assert float(inertia[0]) == pytest.approx(
+        model.mass_matrix(p)[3, 3] / kinematics["dx_cyl_dphi"] ** 2, rel=1e-9
+    )
+    h = 1e-6
+    ahead = model.cylinder_kinematics(p + np.array([0, 0, 0, h]))["dx_cyl_dphi"]
+    behind = model.cylinder_kinematics(p - np.array([0, 0, 0, h]))["dx_cyl_dphi"]
+    assert float(slope[0]) == pytest.approx((ahead - behind) / (2 * h), rel=1e-6)

@@ -1,22 +1,36 @@
-"""Recovery of Table 4 and Table 5 from synthetic lift tests (section 4.1).
+"""Recovery of Table 4 and Table 5 from lift tests on the hydraulic plant (section 4.1).
 
-Reference values are the paper's tables (:data:`TABLE4`, :data:`TABLE5`), put into the stand-in
-model that generated the records. Tolerances are the largest errors seen over 40 seeds of the
-default sensor model (``SensorOptions()``: 500 Hz, 0.5 bar, 50 µm, 1e-4 m³/s noise), rounded up:
+The records come from the plant Function (:mod:`loader_model.identification.synthetic`): the
+parked loader on its tyres, both cylinders, pump, valves, Eq. 46 friction and Eq. 47 leakage with
+the shipped loader's Table 4 and 5 values. Tolerances are the largest errors measured over
+seeds 0-9 of the default sensor model (``SensorOptions()``: 500 Hz, 0.5 bar, 50 µm,
+1e-4 m³/s noise; ``LiftProfile()``: 12 cycles), rounded up:
 
-============ =========== ======================================================================
-coefficient  tolerance   worst of 40 seeds (mean ± sd)
-============ =========== ======================================================================
-f_s          35 %        27.8 % (+0.7 ± 7.1 %)  weakly determined: trades off against γ, f_C
-tau_s        6 %         4.7 % (−0.4 ± 1.3 %)
-gamma        35 %        25.4 % (−0.6 ± 7.2 %)  weakly determined (f_s γ is the slope at v = 0)
-f_c          35 %        27.1 % (+0.9 ± 6.2 %)  loads are few: f_C p_A is close to f_s
-f_v          5 %         4.0 % (−0.1 ± 1.2 %)
-C            1 %         0.7 % (−0.1 ± 0.3 %)
-1/K_oil      8 %         5.4 % (−0.3 ± 2.1 %)
-k_Lp         2 %         1.2 % (−0.1 ± 0.5 %)
-k_Lv         3 %         1.9 % (+0.4 ± 0.9 %)
-============ =========== ======================================================================
+============ =========== ======================= =========================================
+coefficient  tolerance   worst of seeds 0-9      with 5 % flow drop-outs: robust / LS worst
+============ =========== ======================= =========================================
+C            3 %         2.2 % (+0.4 ± 0.8 %)    4.2 % / 5.9 %
+1/K_oil      7 %         5.6 % (+0.5 ± 3.2 %)    9.4 % / 9.4 %
+k_Lp         3 %         2.3 % (+0.5 ± 0.9 %)    3.9 % / 6.0 %
+k_Lv         4 %         2.9 % (+1.0 ± 1.5 %)    13.8 % (+7.5 to +13.8 %) / 53.8-63.4 %
+============ =========== ======================= =========================================
+
+Table 5 is recovered: Eq. 48 holds exactly in the plant while the check and relief valves stay
+shut (the profile keeps 85 bar < p_A < 165 bar), the spread is the sensor noise. The lift test
+moves the cylinders slower than the stand-in did (0.02-0.15 m/s, longer ramps: faster strokes
+excited the boom on its tyres into pressure swings that reached the relief valve), so the
+regressors vary less and the noise spread is about three times that of the stand-in.
+
+Table 4 is *not* recovered from plant records (``test_friction_from_the_record_is_limited_
+by_the_chassis``, a strict xfail with the measured values). The whole seal friction is 1-2 kN
+against an 80-110 kN load force, and the equivalent cylinder of Eq. 44 takes the chassis at
+rest: on its tyres the chassis pitches under the moving boom, which the record does not show.
+With the lever at each sample the model F_L + m_eq ẍ misses the plant's cylinder force by
+0.9-1.8 kN r.m.s. (constant lever: 13-16 kN); the chassis pitch acceleration, not in the
+record, explains all but 0.19 kN of it. Even with that oracle correction (exact signals, 6
+cycles) the fit missed Table 4 by f_s −84 %, τ_s −14 %, γ +417 %, f_C −69 %, f_v +42 %: the
+Stribeck part is a few hundred newtons at these speeds, so the equivalent model would have
+to be good to well below 0.2 kN.
 """
 
 from __future__ import annotations
@@ -38,13 +52,14 @@ from loader_model.identification import (
     prepare_signals,
     synthesize,
 )
-from loader_model.identification.friction import measured_friction
 from loader_model.identification.synthetic import SyntheticRecording
 
 FRICTION_TRUTH = np.array([TABLE4[k] for k in ("f_s", "tau_s", "gamma", "f_c", "f_v")])
 LEAKAGE_TRUTH = np.array([TABLE5["C"], 1.0 / TABLE5["K_oil"], TABLE5["k_Lp"], TABLE5["k_Lv"]])
-FRICTION_TOLERANCE = np.array([0.35, 0.06, 0.35, 0.35, 0.05])
-LEAKAGE_TOLERANCE = np.array([0.01, 0.08, 0.02, 0.03])
+FRICTION_TOLERANCE = np.array([0.35, 0.06, 0.35, 0.35, 0.05])  # the stand-in's; not reached
+LEAKAGE_TOLERANCE = np.array([0.03, 0.07, 0.03, 0.04])
+#: 5 % flow drop-outs, robust fit (module docstring: the drop-outs near zero flow bias k_Lv).
+OUTLIER_TOLERANCE = np.array([0.05, 0.11, 0.05, 0.16])
 SHAFT_SPEED = 40.0  # rev/s, the shipped loader's pump (only used for V_p columns)
 NOISE_FREE = SensorOptions(
     pressure_noise_pa=0.0,
@@ -70,67 +85,99 @@ def _relative(values: np.ndarray, truth: np.ndarray) -> np.ndarray:
     return np.abs(values / truth - 1.0)
 
 
-def test_friction_from_exact_signals_to_machine_precision(clean: SyntheticRecording) -> None:
+def test_record_starts_in_the_plants_static_equilibrium(clean: SyntheticRecording) -> None:
+    from loader_model.parameters import bucket_load, default_loader
+    from loader_model.plant.equilibrium import static_state
+    from loader_model.plant.plant_parameters import plant_parameter_vector
+
+    mass = float(clean.record.load_mass_kg[0])
+    full = bucket_load("full")
+    load = dataclasses.replace(full, mass=mass, inertia=full.inertia * mass / full.mass)
+    x0, u0 = static_state(plant_parameter_vector(default_loader(), load))
+    shaft_speed = default_loader().pump.shaft_speed
+    assert clean.truth["p_a"][0] == pytest.approx(x0[10], rel=1e-12)
+    assert clean.truth["flow"][0] == pytest.approx(shaft_speed * u0, rel=1e-12)
+    # the recorded flow is Q_pump plus the sensor's offset (Table 5's C by default)
+    assert clean.record.flow_m3_s[0] == pytest.approx(shaft_speed * u0 + TABLE5["C"], rel=1e-12)
+
+
+def test_plant_friction_is_eq_46_with_table_4(clean: SyntheticRecording) -> None:
+    # The plant's own friction, A_p (p_A − α p_B) − F_act, fitted by the estimator's Eq. 46:
+    # the plant and the estimator share the model and the default file is Table 4.
     t, c = clean.truth, clean.cylinder
-    friction = measured_friction(
-        c.area_m2,
-        c.alpha,
-        t["p_a"],
-        t["p_b"],
-        c.load_force(t["load_mass"]),
-        c.inertia(t["load_mass"]),
-        t["a"],
-    )
+    friction = c.area_m2 * (t["p_a"] - c.alpha * t["p_b"]) - t["force"]
     fit = fit_friction(t["v"], t["p_a"], friction)
-    assert np.all(_relative(fit.values, FRICTION_TRUTH) < 1e-12)  # measured ≤ 7e-16
-    assert fit.r_squared == pytest.approx(1.0, abs=1e-15)
+    assert np.all(_relative(fit.values, FRICTION_TRUTH) < 1e-9)  # measured ≤ 9e-16
+    assert fit.r_squared == pytest.approx(1.0, abs=1e-12)
 
 
-def test_leakage_from_exact_signals_to_machine_precision(clean: SyntheticRecording) -> None:
+def test_leakage_from_exact_plant_signals_to_machine_precision(clean: SyntheticRecording) -> None:
     t, c = clean.truth, clean.cylinder
+    assert 80e5 < t["p_a"].min() and t["p_a"].max() < 170e5  # check and relief valves shut
     result = fit_leakage(
         t["flow"], t["v"], c.area_m2, c.volume_a(t["x"]), t["dp_a"], t["p_a"], t["p_b"]
     )
-    # The true flow has no offset: C = 0 (absolute), the others relative; measured ≤ 9e-16.
+    # The plant's flow has no offset: C = 0 (absolute), the others relative; measured ≤ 1e-14.
     values = result.regression.values
-    assert abs(values[0]) < 1e-12 * abs(TABLE5["C"])
-    assert np.all(_relative(values[1:], LEAKAGE_TRUTH[1:]) < 1e-12)
-    assert result.bulk_modulus == pytest.approx(TABLE5["K_oil"], rel=1e-12)
+    assert abs(values[0]) < 1e-9 * abs(TABLE5["C"])
+    assert np.all(_relative(values[1:], LEAKAGE_TRUTH[1:]) < 1e-10)
+
+
+def test_lever_at_each_sample_and_what_the_chassis_leaves(clean: SyntheticRecording) -> None:
+    t, c = clean.truth, clean.cylinder
+    m, x = t["load_mass"], t["x"]
+    friction = c.area_m2 * (t["p_a"] - c.alpha * t["p_b"]) - t["force"]
+
+    def rms(a: np.ndarray) -> float:
+        return float(np.sqrt(np.mean(a**2)))
+
+    constant = t["force"] - c.load_force(m) - c.inertia(m) * t["a"]
+    per_sample = t["force"] - c.load_force(m, x) - c.inertial_force(m, x, t["v"], t["a"])
+    assert rms(constant) > 10e3  # measured 13.0 kN
+    assert rms(per_sample) < 1.2e3  # measured 0.89 kN, of the order of the friction itself
+    assert rms(friction) < 2.5e3  # measured 1.6 kN
+    # The chassis pitch acceleration explains the rest (measured 0.19 kN left).
+    basis = np.column_stack((t["thetadd_1"], np.ones_like(x)))
+    left = per_sample - basis @ np.linalg.lstsq(basis, per_sample, rcond=None)[0]
+    assert rms(left) < 0.25e3
 
 
 def test_noise_free_record_through_the_derivative_filters(clean: SyntheticRecording) -> None:
     signals = prepare_signals(clean.record, SHAFT_SPEED)
-    friction = identify_friction(signals, clean.cylinder).fit
-    # The filters' own error: measured ≤ 0.06 % (f_s), residual s = 1.2 N.
-    assert np.all(_relative(friction.values, FRICTION_TRUTH) < 1e-3)
-    assert friction.s < 5.0
     leakage = identify_leakage(signals, clean.cylinder).regression
-    # Measured ≤ 3.4e-6 (1/K_oil).
-    assert np.all(_relative(leakage.values, LEAKAGE_TRUTH) < 2e-5)
+    # The filters' own error: measured ≤ 0.011 % (1/K_oil).
+    assert np.all(_relative(leakage.values, LEAKAGE_TRUTH) < 5e-4)
 
 
-def test_noisy_record_recovers_tables_4_and_5(noisy: SyntheticRecording) -> None:
+def test_noisy_record_recovers_table_5(noisy: SyntheticRecording) -> None:
     signals = prepare_signals(noisy.record, SHAFT_SPEED)
-    friction = identify_friction(signals, noisy.cylinder).fit
-    assert np.all(_relative(friction.values, FRICTION_TRUTH) < FRICTION_TOLERANCE)
-    # The spread the paper reports (R² 0.831, s 0.767 kN) is of the same order here.
-    assert 0.75 < friction.r_squared < 0.95
-    assert 300.0 < friction.s < 800.0
     leakage = identify_leakage(signals, noisy.cylinder).regression
     assert np.all(_relative(leakage.values, LEAKAGE_TRUTH) < LEAKAGE_TOLERANCE)
     assert leakage.s == pytest.approx(1e-4, rel=0.05)  # the flow noise dominates
-    for fit in (friction, leakage):
-        assert np.all(fit.low < fit.values) and np.all(fit.values < fit.high)
+    assert np.all(leakage.low < leakage.values) and np.all(leakage.values < leakage.high)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="the chassis pitches on its tyres; the record cannot show it (module docstring). "
+    "Measured, noise-free 6 cycles (this record): f_s −124 %, τ_s +290 %, γ +1106 %, "
+    "f_C −0.7 %, f_v −42 %; 12 cycles: f_s −140 %, τ_s +223 %, γ +652 %, f_C −24 %, f_v +1.5 %; "
+    "seeds 0-3 noisy: f_s −141 % to +35000 %, R² 0.28-0.44, s 1.3-1.9 kN",
+)
+def test_friction_from_the_record_is_limited_by_the_chassis(clean: SyntheticRecording) -> None:
+    signals = prepare_signals(clean.record, SHAFT_SPEED)
+    friction = identify_friction(signals, clean.cylinder).fit
+    assert np.all(_relative(friction.values, FRICTION_TRUTH) < FRICTION_TOLERANCE)
 
 
 def test_robust_fit_survives_flow_dropouts_where_least_squares_does_not(
     noisy: SyntheticRecording,
 ) -> None:
     # 5 % of the flow samples drop out to 0 (a lost swash-plate reading), as
-    # SensorOptions(outlier_fraction=0.05) makes them. Over 10 seeds (100-109) the robust fit
-    # stayed within 2.1 % (C), 5.1 % (1/K), 2.7 % (k_Lp), 6.2 % (k_Lv); least squares was off by
-    # 54-64 % in k_Lv and 4-6 % in C and k_Lp in every seed. Drop-outs at flows near 0 look like
-    # inliers; the rest get weight 0.
+    # SensorOptions(outlier_fraction=0.05) makes them. Over seeds 0-9 (generated with the
+    # drop-outs) the robust fit stayed within 4.2 % (C), 9.4 % (1/K), 3.9 % (k_Lp), 13.8 %
+    # (k_Lv, biased +7.5 to +13.8 %); least squares was off by 54-63 % in k_Lv in every seed.
+    # Drop-outs at flows near 0 look like inliers (the k_Lv bias); the rest get weight 0.
     flow = noisy.record.flow_m3_s.copy()
     dropped = np.random.default_rng(7).random(flow.size) < 0.05
     flow[dropped] = 0.0
@@ -138,7 +185,7 @@ def test_robust_fit_survives_flow_dropouts_where_least_squares_does_not(
     signals = prepare_signals(record, SHAFT_SPEED)
     robust = identify_leakage(signals, noisy.cylinder).regression
     plain = identify_leakage(signals, noisy.cylinder, robust=False).regression
-    assert np.all(_relative(robust.values, LEAKAGE_TRUTH) < [0.03, 0.08, 0.04, 0.08])
+    assert np.all(_relative(robust.values, LEAKAGE_TRUTH) < OUTLIER_TOLERANCE)
     assert _relative(plain.values, LEAKAGE_TRUTH)[3] > 0.4
     rejected = robust.weights == 0.0
     assert np.all(dropped[signals.keep][rejected])  # only drop-outs are rejected
@@ -159,7 +206,5 @@ def test_generator_drops_the_requested_fraction_of_flow_samples() -> None:
 def test_tolerances_hold_over_seeds(seed: int) -> None:
     recording = synthesize(SensorOptions(seed=seed))
     signals = prepare_signals(recording.record, SHAFT_SPEED)
-    friction = identify_friction(signals, recording.cylinder).fit
     leakage = identify_leakage(signals, recording.cylinder).regression
-    assert np.all(_relative(friction.values, FRICTION_TRUTH) < FRICTION_TOLERANCE)
     assert np.all(_relative(leakage.values, LEAKAGE_TRUTH) < LEAKAGE_TOLERANCE)

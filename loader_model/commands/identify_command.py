@@ -5,8 +5,8 @@
 or Eq. 48 (paper section 4.1) and print the coefficients beside the paper's tables with R², s
 and confidence intervals. ``--plot`` writes a fit plot, ``--update`` a new parameter file whose
 identified values carry their source. ``identify synthesize OUT.csv`` writes a synthetic lift
-test from a stand-in cylinder model with Table 4 and 5 values (noise, quantisation, offsets,
-outliers and seed as options).
+test run on the hydraulic plant with the shipped loader (Table 4 and 5 values; noise,
+quantisation, offsets, outliers and seed as options).
 """
 
 from __future__ import annotations
@@ -209,8 +209,8 @@ def _synthesize(args: argparse.Namespace) -> int:
             for label, values in columns.items()
         }
     comments = (
-        "synthetic lift test by `loader-model identify synthesize` (stand-in cylinder model, "
-        "Table 4 and 5 values)",
+        "synthetic lift test by `loader-model identify synthesize` (hydraulic plant, shipped "
+        "loader: Table 4 and 5 values)",
         f"seed {args.seed}, {args.cycles} cycles, {sensors}",
     )
     write_measurement_csv(args.output, columns, comments)

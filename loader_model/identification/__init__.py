@@ -9,7 +9,7 @@ Modules, one job each:
 - :mod:`.friction`: seal friction, Eq. 44 (sign corrected) and Eq. 46 by variable projection;
 - :mod:`.leakage`: leakage and compressibility, Eq. 48 by robust regression;
 - :mod:`.pipeline`: from a record to the two regressions;
-- :mod:`.synthetic`: synthetic lift-test records from a stand-in cylinder model;
+- :mod:`.synthetic`: synthetic lift-test records from the hydraulic plant;
 - :mod:`.report`: tables beside the paper's, fit plots, parameter-file updates.
 """
 

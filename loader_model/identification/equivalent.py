@@ -19,9 +19,22 @@ identified friction, leakage and flows are totals of both cylinders. So here:
       m_{eq} = \frac{\sum_i \left(J_i + m_i \lVert G_i - D \rVert^2\right)}{h^2},
 
   summed over the boom (with empty bucket) and the bucket load (mass from the measurement,
-  centre of gravity and inertia per kg from a bucket-load case). The lever is taken constant
-  (its value at the operating angle): an approximation of this stand-in while the full plant
-  is not there; a user with better F_L and m_eq estimates can pass them to the estimators.
+  centre of gravity and inertia per kg from a bucket-load case).
+
+Without a position these are the values at the operating angle (constant lever). With the
+piston position x of each sample (:meth:`EquivalentCylinder.load_force`,
+:meth:`EquivalentCylinder.inertial_force`) the boom angle ψ = φ − φ0 follows from the geometry
+(law of cosines in the triangle C, D, E), the centres of gravity turn with the boom about D, and
+the lever h(ψ) and its slope h'(ψ) are evaluated at ψ: with J_D the inertia about D,
+J_D ψ̈ = h F − M_g(ψ) and ẍ = h ψ̈ + h' ψ̇², so the cylinder force that moves the boom is
+
+.. math::
+
+    F = F_L(\psi) + m_{eq}(\psi)\left(\ddot x - \frac{h'(\psi)}{h(\psi)^2}\dot x^2\right),
+    \qquad F_L(\psi) = \frac{M_g(\psi)}{h(\psi)}, \quad m_{eq}(\psi) = \frac{J_D}{h(\psi)^2}.
+
+What remains approximate is the chassis: it is taken at rest, while on the machine it moves on
+its tyres (pitch and heave under the boom's reaction).
 """
 
 from __future__ import annotations
@@ -63,6 +76,10 @@ class EquivalentCylinder:
         (C_x, C_y, D_x, D_y, E_x, E_y, φ0, L_r): cylinder base, boom pivot and rod end at the
         operating boom angle φ0 (m, rad) and the retracted length (m), for
         :meth:`position_from_boom_angle`.
+    gravity_moment, gravity_moment_per_kg : (float, float)
+        g m (G − D) of the boom with empty bucket (N·m, both components at φ0) and of one kg of
+        bucket load (N·m/kg): the gravity moment about D at a boom angle is the x component of
+        this vector turned by ψ = φ − φ0.
     """
 
     area_m2: float
@@ -76,6 +93,8 @@ class EquivalentCylinder:
     inertia_per_kg: float
     lever_m_per_rad: float
     kinematics: tuple[float, ...] = ()
+    gravity_moment: tuple[float, float] = (0.0, 0.0)
+    gravity_moment_per_kg: tuple[float, float] = (0.0, 0.0)
 
     @classmethod
     def from_parameters(cls, loader: LoaderParameters, load: BucketLoad) -> EquivalentCylinder:
@@ -88,14 +107,15 @@ class EquivalentCylinder:
 
         def moment_and_inertia(
             mass: float, cog: tuple[float, float], inertia: float
-        ) -> tuple[float, float]:
+        ) -> tuple[np.ndarray, float]:
             r = np.asarray(cog, dtype=float) - d
-            return float(g * mass * r[0]), float(inertia + mass * float(r @ r))
+            return g * mass * r, float(inertia + mass * float(r @ r))
 
-        boom_moment, boom_inertia = moment_and_inertia(
+        boom_vector, boom_inertia = moment_and_inertia(
             loader.boom.mass, loader.boom.cog, loader.boom.inertia
         )
-        load_moment, load_inertia = moment_and_inertia(load.mass, load.cog, load.inertia)
+        load_vector, load_inertia = moment_and_inertia(load.mass, load.cog, load.inertia)
+        boom_moment, load_moment = float(boom_vector[0]), float(load_vector[0])
         return cls(
             area_m2=cyl.count * cyl.piston_area,
             alpha=cyl.annulus_area / cyl.piston_area,
@@ -108,15 +128,73 @@ class EquivalentCylinder:
             inertia_per_kg=load_inertia / load.mass / lever**2,
             lever_m_per_rad=lever,
             kinematics=(*map(float, (*c, *d, *e)), geo.boom_angle, cyl.retracted_length),
+            gravity_moment=(float(boom_vector[0]), float(boom_vector[1])),
+            gravity_moment_per_kg=(
+                float(load_vector[0] / load.mass),
+                float(load_vector[1] / load.mass),
+            ),
         )
 
-    def load_force(self, load_mass_kg: np.ndarray | float) -> np.ndarray:
-        """F_L in N for bucket-load masses in kg (Eq. 44)."""
-        return self.load_force_n + self.load_force_per_kg * np.asarray(load_mass_kg, dtype=float)
+    def load_force(
+        self, load_mass_kg: np.ndarray | float, position_m: np.ndarray | None = None
+    ) -> np.ndarray:
+        """F_L in N for bucket-load masses in kg (Eq. 44).
 
-    def inertia(self, load_mass_kg: np.ndarray | float) -> np.ndarray:
-        """m_eq in kg for bucket-load masses in kg (Eq. 44)."""
-        return self.inertia_kg + self.inertia_per_kg * np.asarray(load_mass_kg, dtype=float)
+        Without ``position_m``: at the operating angle (constant lever). With it: at the boom
+        angle of each piston position, F_L = M_g(ψ)/h(ψ) (module docstring).
+        """
+        mass = np.asarray(load_mass_kg, dtype=float)
+        if position_m is None:
+            return self.load_force_n + self.load_force_per_kg * mass
+        turn, lever, _ = self._lever(position_m)
+        moment = np.add.outer(0.0, self.gravity_moment) + np.multiply.outer(
+            mass, self.gravity_moment_per_kg
+        )
+        arm = np.cos(turn) * moment[..., 0] - np.sin(turn) * moment[..., 1]
+        return arm / lever
+
+    def inertia(
+        self, load_mass_kg: np.ndarray | float, position_m: np.ndarray | None = None
+    ) -> np.ndarray:
+        """m_eq = J_D / h² in kg for bucket-load masses in kg (Eq. 44), at the operating angle or
+        at the boom angle of each piston position."""
+        constant = self.inertia_kg + self.inertia_per_kg * np.asarray(load_mass_kg, dtype=float)
+        if position_m is None:
+            return constant
+        _, lever, _ = self._lever(position_m)
+        return constant * (self.lever_m_per_rad / lever) ** 2
+
+    def inertial_force(
+        self,
+        load_mass_kg: np.ndarray,
+        position_m: np.ndarray,
+        velocity_m_s: np.ndarray,
+        acceleration_m_s2: np.ndarray,
+    ) -> np.ndarray:
+        """m_eq(ψ) (ẍ − h'/h² ẋ²) in N: the force that accelerates boom and load (module
+        docstring), the m_eq ẍ of Eq. 44 with the lever at each sample."""
+        _, lever, slope = self._lever(position_m)
+        mass = self.inertia(load_mass_kg, position_m)
+        return mass * (acceleration_m_s2 - slope / lever**2 * np.asarray(velocity_m_s) ** 2)
+
+    def _lever(self, position_m: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Boom turn ψ from the operating angle, lever h(ψ) and dh/dψ at piston positions."""
+        c_x, c_y, d_x, d_y, e_x, e_y, _, retracted = self.kinematics
+        a = np.array([d_x - c_x, d_y - c_y])
+        b = np.array([e_x - d_x, e_y - d_y])
+        length = np.asarray(position_m, dtype=float) + retracted
+        cosine = (length**2 - a @ a - b @ b) / (2.0 * np.hypot(*a) * np.hypot(*b))
+        offset = np.arctan2(b[1], b[0]) - np.arctan2(a[1], a[0])
+        branch = np.sign(np.sin(offset)) or 1.0  # the branch through ψ = 0
+        turn = branch * np.arccos(np.clip(cosine, -1.0, 1.0)) - offset
+        cos, sin = np.cos(turn), np.sin(turn)
+        r_x, r_y = cos * b[0] - sin * b[1], sin * b[0] + cos * b[1]  # E − D turned by ψ
+        u_x, u_y = a[0] + r_x, a[1] + r_y  # E − C
+        norm = np.hypot(u_x, u_y)
+        du = u_x * -r_y + u_y * r_x  # u · du/dψ, du/dψ = (−r_y, r_x)
+        lever = du / norm
+        slope = (r_x**2 + r_y**2 - (u_x * r_x + u_y * r_y)) / norm - du**2 / norm**3
+        return turn, lever, slope
 
     def volume_a(self, position_m: np.ndarray | float) -> np.ndarray:
         """Total piston-side volume V_A = A_p x + V_A,dead in m³ (Eq. 36, 48)."""

@@ -59,11 +59,14 @@ def measured_friction(
     p_a: np.ndarray,
     p_b: np.ndarray,
     load_force_n: np.ndarray,
-    inertia_kg: np.ndarray,
-    acceleration: np.ndarray,
+    inertial_force_n: np.ndarray,
 ) -> np.ndarray:
-    """F_f = A_p (p_A − α p_B) − F_L − m_eq ẍ in N (Eq. 44, sign corrected from Eq. 31)."""
-    return area_m2 * (p_a - alpha * p_b) - load_force_n - inertia_kg * acceleration
+    """F_f = A_p (p_A − α p_B) − F_L − m_eq ẍ in N (Eq. 44, sign corrected from Eq. 31).
+
+    ``inertial_force_n`` is m_eq ẍ, or with the lever at each sample
+    :meth:`~.equivalent.EquivalentCylinder.inertial_force`.
+    """
+    return area_m2 * (p_a - alpha * p_b) - load_force_n - inertial_force_n
 
 
 def _thin(smooth: Smoother, step: int) -> Smoother:

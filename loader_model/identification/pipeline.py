@@ -8,7 +8,8 @@ filter (:func:`~.derivatives.acceleration_kernel`) is applied to p_A, p_B and F_
 measured friction is h₂ ∗ F_f. The friction model of Eq. 46 is evaluated at the smoothed
 velocity v̂ and the raw p_A and then filtered with h₂ too (``Signals.smooth``), so model and
 measurement went through the same kernel. With the plain smoothing filter on p_A, p_B instead,
-the synthetic test's noise-free record (10 Hz cutoff) left a 440 N residual and biased f_s by
+the noise-free record of the former stand-in cylinder model (before the records came from the
+plant) (10 Hz cutoff) left a 440 N residual and biased f_s by
 −53 % and γ by +54 %; with h₂, 1.4 N and below 0.1 %. A less smoothed velocity in the model
 (derivative cutoff 2, 4, 8 times higher) did not lower that further but let velocity noise bias
 τ_s (mean over 6 noisy records: +0.1 %, +2.7 %, +11 %, against −0.4 % with v̂).
@@ -19,9 +20,10 @@ the robust fit could no longer single it out. Half a window is dropped at each e
 end effects).
 
 Residuals of filtered signals are correlated, so the covariances add Bartlett-weighted lags
-(:mod:`.regression`) up to :data:`COVARIANCE_LAGS_PER_WINDOW` windows. Chosen on the synthetic
-records: with one window the friction standard errors were 1.3-1.9 times the scatter of the
-estimates over 28 seeds (intervals too wide, coverage 100 %); with four they match it within
+(:mod:`.regression`) up to :data:`COVARIANCE_LAGS_PER_WINDOW` windows. Chosen on the stand-in
+model's records (the friction fit is not meaningful on plant records, see the README): with
+one window the friction standard errors were 1.3-1.9 times the scatter of the estimates over
+28 seeds (intervals too wide, coverage 100 %); with four they match it within
 about 20 %. The leakage errors hardly change (its residual is mostly white flow noise).
 """
 
@@ -69,8 +71,8 @@ class Signals:
         Savitzky-Golay window in samples.
     cutoff_hz : float
         Its −3 dB cutoff request in Hz.
-    v_full, p_a_raw, p_b_raw, load_mass_raw : numpy.ndarray
-        Untrimmed v̂, raw p_A, p_B and load mass (for the friction equation, see
+    x_full, v_full, p_a_raw, p_b_raw, load_mass_raw : numpy.ndarray
+        Untrimmed x̂, v̂, raw p_A, p_B and load mass (for the friction equation, see
         :meth:`smooth`).
     keep : slice
         The samples kept after trimming the filter's ends.
@@ -87,6 +89,7 @@ class Signals:
     load_mass: np.ndarray
     window: int
     cutoff_hz: float
+    x_full: np.ndarray
     v_full: np.ndarray
     p_a_raw: np.ndarray
     p_b_raw: np.ndarray
@@ -127,10 +130,10 @@ def prepare_signals(
         return savgol_derivative(signal, fs, order, window)
 
     keep = slice(window // 2, record.time_s.size - window // 2)
-    v_full = d(position, 1)
+    x_full, v_full = d(position, 0), d(position, 1)
     return Signals(
         time=record.time_s[keep],
-        x=d(position, 0)[keep],
+        x=x_full[keep],
         v=v_full[keep],
         a=d(position, 2)[keep],
         p_a=d(record.p_a_pa, 0)[keep],
@@ -140,6 +143,7 @@ def prepare_signals(
         load_mass=record.load_mass_kg[keep],
         window=window,
         cutoff_hz=cutoff_hz,
+        x_full=x_full,
         v_full=v_full,
         p_a_raw=record.p_a_pa,
         p_b_raw=record.p_b_pa,
@@ -166,19 +170,21 @@ class FrictionResult:
 def identify_friction(
     signals: Signals, cylinder: EquivalentCylinder, level: float = 0.95
 ) -> FrictionResult:
-    """Table 4 from filtered signals: F_f by Eq. 44 (corrected), fit of Eq. 46."""
+    """Table 4 from filtered signals: F_f by Eq. 44 (corrected), fit of Eq. 46.
+
+    F_L and m_eq take the lever at each sample's boom angle (:mod:`.equivalent`), with the
+    h'/h² ẋ² term of the turning boom; the chassis is taken at rest.
+    """
     s = signals
-    smoothed = s.smooth(
-        np.column_stack((s.p_a_raw, s.p_b_raw, cylinder.load_force(s.load_mass_raw)))
-    )
+    load_force = cylinder.load_force(s.load_mass_raw, s.x_full)
+    smoothed = s.smooth(np.column_stack((s.p_a_raw, s.p_b_raw, load_force)))
     measured = measured_friction(
         cylinder.area_m2,
         cylinder.alpha,
         smoothed[:, 0],
         smoothed[:, 1],
         smoothed[:, 2],
-        cylinder.inertia(s.load_mass),
-        s.a,
+        cylinder.inertial_force(s.load_mass, s.x, s.v, s.a),
     )
     fit = fit_friction(
         signals.v_full,

@@ -1,25 +1,34 @@
-r"""Synthetic identification records from a small stand-in cylinder model (section 4.1).
-
-**Stand-in model until the plant lands.** The records come from one equivalent cylinder built
-from the same equations the estimators fit, not from the full hydraulic plant
-(``loader_model.plant``, to come); a later change can swap the source behind
-:func:`synthesize` and keep its output type (:class:`~.measurement.MeasurementRecord`).
+r"""Synthetic identification records from the hydraulic plant (section 4.1).
 
 The test follows the paper: "the boom cylinders were repeatedly extended and retracted with
-varying rates and loads". States x (piston position), v = ẋ, p_A, p_B:
+varying rates and loads". The machine is the plant (:func:`loader_model.plant.plant.
+plant_function`, one CasADi Function: multibody model on its tyres, both lift cylinders, pump,
+charge and relief valves, leakage Eq. 47, friction Eq. 46), parked (w = 0), with the parameters
+of a loader file (default: the shipped loader, whose friction and leakage are Table 4 and 5).
+
+Pump command, composed as CasADi expressions around the plant (a PI position law on the piston
+position x = ``x_piston`` of the plant's outputs):
 
 .. math::
 
-    m_{eq}(m) \dot v &= A_p (p_A - \alpha p_B) - F_f(v, p_A) - F_L(m) \\
-    \dot p_A &= \frac{K_{oil}}{V_A(x)} \big(Q_A - A_p v - Q_L\big) \\
-    \dot p_B &= \frac{K_{oil}}{V_B(x)} \big(-G_c (p_B - p_c) + \alpha A_p v + Q_L\big)
+    V_{p,ref} = \frac{A_p}{n}\left(\dot x_{ref} + k_x (x_{ref} - x) + k_i z\right), \qquad
+    \dot z = x_{ref} - x
 
-with F_f of Eq. 46 (errata 10 reading, :mod:`.friction`), Q_L = k_Lp (p_A − p_B) + k_Lv v
-(Eq. 47 in the sign of Eq. 48, :mod:`.leakage`), the rod side fed from the charge line p_c
-through a conductance G_c (Eq. 37), F_L and m_eq of :mod:`.equivalent`. The pump flow follows a
-smooth trapezoidal velocity profile with position feedback,
-Q_A = Q_max tanh((A_p v_ref + k_x A_p (x_ref − x)) / Q_max). Load masses change only while the
-boom is held, over a smooth ramp. Integrated with ``scipy.integrate.solve_ivp`` (LSODA).
+with A_p the total piston area and n the shaft speed; z starts at the value that gives the
+static command (the pump holding the boom against the leakage), so the run starts at rest in
+the plant's static equilibrium (:func:`~loader_model.plant.equilibrium.static_state`).
+
+The reference: a smooth trapezoidal velocity profile (raised-cosine ramps) of extend and retract
+strokes from the carry position (the plant's static piston position) with random speeds, ramps
+and heights; the bucket load changes, over a smooth ramp, only while the boom is held at the
+bottom. Each load mass m is its own plant parameter vector (bucket load of mass m with the
+centre of gravity and the inertia per kg of a load case, combined with the boom by
+:func:`~loader_model.parameters.combine_bodies`), passed per sample interval.
+
+Integration: CasADi ``cvodes`` on the sample grid, references and parameters piecewise constant
+over each sample interval. The recorded flow is the plant's ``Q_pump`` output (n V_p); p_A, p_B
+are gauge pressures. The true ẋ and ẍ come from the generated ``cylinder_kinematics`` and its
+directional derivative along the plant's ẋ.
 
 Sensors: Gaussian noise, quantisation step and offset per channel; drop-outs of the flow
 estimate (reads 0) on a fraction of samples (outliers); the flow offset defaults to Table 5's C.
@@ -27,15 +36,17 @@ estimate (reads 0) on a fraction of samples (outliers); the flow offset defaults
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
+from functools import cache
 
+import casadi as ca
 import numpy as np
-from scipy.integrate import solve_ivp
 
+import loader_model_generated as generated
 from loader_model.identification.equivalent import EquivalentCylinder
-from loader_model.identification.friction import friction_force
 from loader_model.identification.measurement import MeasurementRecord
-from loader_model.parameters import bucket_load, default_loader
+from loader_model.parameter_schema import BucketLoad, LoaderParameters
 
 __all__ = [
     "TABLE4",
@@ -51,6 +62,8 @@ TABLE4 = {"f_s": 17.0e3, "tau_s": 40.0, "gamma": 5.7, "f_c": 1.07e-4, "f_v": 8.1
 #: Table 5 in SI units: C [m³/s], K_oil [Pa], k_Lp [m³/(s·Pa)], k_Lv [m²].
 TABLE5 = {"C": -3.2e-4, "K_oil": 1.64e9, "k_Lp": 2.87e-11, "k_Lv": -5.0e-4}
 
+_N_MECH = len(generated.PARAMETER_NAMES)
+
 
 @dataclass(frozen=True)
 class SensorOptions:
@@ -59,7 +72,7 @@ class SensorOptions:
     Attributes
     ----------
     sample_rate_hz : float
-        Logging rate in Hz.
+        Logging rate in Hz (also the integration grid).
     pressure_noise_pa, position_noise_m, flow_noise_m3_s : float
         Standard deviations of white Gaussian noise.
     pressure_step_pa, position_step_m, flow_step_m3_s : float
@@ -101,19 +114,27 @@ class LiftProfile:
     ramp_range_s : (float, float)
         Range of the speed ramp durations (raised cosine) in s.
     position_range_m : (float, float)
-        Lowest and highest piston position in m (strokes drawn inside).
+        Bottom and highest top of the strokes, piston position in m; each top is drawn in the
+        upper half. The run starts at the plant's static position and moves to the bottom
+        during the first hold.
     hold_s : float
         Hold between strokes in s (loads change during the hold at the bottom).
     load_masses_kg : tuple of float
-        Bucket loads drawn per cycle (the paper: empty, 340 kg, 770 kg).
+        Bucket loads drawn per cycle, in kg (> 0; the paper: 340 kg and 770 kg).
+    position_gain : float
+        k_x of the position law in 1/s.
+    integral_gain : float
+        k_i of the position law in 1/s².
     """
 
     cycles: int = 12
-    speed_range_m_s: tuple[float, float] = (0.02, 0.25)
-    ramp_range_s: tuple[float, float] = (0.15, 0.8)
-    position_range_m: tuple[float, float] = (0.03, 0.42)
+    speed_range_m_s: tuple[float, float] = (0.02, 0.15)
+    ramp_range_s: tuple[float, float] = (0.4, 1.0)
+    position_range_m: tuple[float, float] = (0.03, 0.28)
     hold_s: float = 1.5
-    load_masses_kg: tuple[float, ...] = (0.0, 340.0, 770.0)
+    load_masses_kg: tuple[float, ...] = (340.0, 555.0, 770.0)
+    position_gain: float = 8.0
+    integral_gain: float = 8.0
 
 
 @dataclass(frozen=True)
@@ -125,12 +146,16 @@ class SyntheticRecording:
     record : MeasurementRecord
         What the sensors logged (write it with ``write_measurement_csv(path, record.columns())``).
     truth : dict of str to numpy.ndarray
-        True ``x``, ``v``, ``a`` (ẍ), ``p_a``, ``p_b``, ``dp_a`` (ṗ_A), ``flow`` (Q_A) and
-        ``load_mass`` at the sample times, derivatives from the model's right-hand side.
+        True ``x``, ``v``, ``a`` (ẍ), ``p_a``, ``p_b``, ``dp_a`` (ṗ_A), ``flow`` (Q_pump),
+        ``force`` (F_act), ``phi`` (boom angle from the static one), ``theta_1`` and
+        ``thetadd_1`` (chassis pitch and its acceleration), ``command`` (V_p,ref) and
+        ``load_mass`` at the
+        sample times, from the plant's state and right-hand side; ``outliers`` (1: dropped).
     cylinder : EquivalentCylinder
-        The equivalent cylinder and load model used.
+        The equivalent cylinder of the loader and load case (what an estimator would use).
     parameters : dict of str to float
-        The true friction (:data:`TABLE4` names) and leakage (:data:`TABLE5` names) values.
+        The plant's true friction (:data:`TABLE4` names) and leakage (:data:`TABLE5` names,
+        C the sensor's flow offset) values.
     """
 
     record: MeasurementRecord
@@ -144,10 +169,11 @@ def _raised_cosine_ramp(t: np.ndarray, start: float, duration: float) -> np.ndar
     return 0.5 - 0.5 * np.cos(np.pi * u)
 
 
-def _schedule(profile: LiftProfile, rng: np.random.Generator, dt: float):
-    """Reference velocity, position and load mass on a fine grid (fine time, v_ref, x_ref, m)."""
+def _schedule(
+    profile: LiftProfile, rng: np.random.Generator, dt: float, x_start: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Reference on the sample grid: time, v_ref, x_ref and load mass."""
     low, high = profile.position_range_m
-    x0 = low
     pieces: list[tuple[float, float, float]] = []  # (speed, ramp, distance) per stroke
     loads = rng.choice(profile.load_masses_kg, size=profile.cycles)
     for _ in range(profile.cycles):
@@ -172,102 +198,171 @@ def _schedule(profile: LiftProfile, rng: np.random.Generator, dt: float):
         if k % 2 == 1 and cycle < profile.cycles:  # at the bottom: change the load
             step = loads[cycle] - loads[cycle - 1]
             mass += step * _raised_cosine_ramp(t, start - profile.hold_s, 0.8 * profile.hold_s)
-    x_ref = x0 + np.concatenate(([0.0], np.cumsum(0.5 * (v_ref[1:] + v_ref[:-1]) * dt)))
-    return t, v_ref, x_ref, mass
+    # from the static position to the bottom during the first hold
+    approach = (x_start - low) * (1.0 - _raised_cosine_ramp(t, 0.0, 0.8 * profile.hold_s))
+    v_approach = np.gradient(approach, dt)
+    x_ref = low + np.concatenate(([0.0], np.cumsum(0.5 * (v_ref[1:] + v_ref[:-1]) * dt)))
+    return t, v_ref + v_approach, x_ref + approach, mass
+
+
+@cache
+def _lift_functions() -> tuple[ca.Function, ca.Function]:
+    """(closed-loop ODE, truth outputs) of the plant under the PI position law (SX)."""
+    from loader_model.plant.plant import OUTPUT_NAMES, STATE_NAMES, plant_function
+    from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
+
+    plant = plant_function()
+    names = {name: i for i, name in enumerate(PLANT_PARAMETER_NAMES)}
+    out = {name: i for i, name in enumerate(OUTPUT_NAMES)}
+    x = ca.SX.sym("x", len(STATE_NAMES))
+    z = ca.SX.sym("z")
+    # references and gains: x_ref, v_ref, k_x, k_i; then the plant parameters
+    ref = ca.SX.sym("ref", 4)
+    params = ca.SX.sym("params", len(PLANT_PARAMETER_NAMES))
+    area = params[names["n_cyl"]] * ca.pi / 4 * params[names["d_piston"]] ** 2
+    w = ca.SX.zeros(len(generated.EXOGENOUS_NAMES))
+    _, y = plant(x, 0, w, params)
+    error = ref[0] - y[out["x_piston"]]
+    command = area / params[names["n_pump"]] * (ref[1] + ref[2] * error + ref[3] * z)
+    xdot, y = plant(x, command, w, params)
+    state = ca.vertcat(x, z)
+    u = ca.vertcat(ref, params)
+    rhs = ca.vertcat(xdot, error)
+    ode = ca.Function("lift_ode", [state, u], [rhs], ["x", "u"], ["xdot"])
+    completed, _ = generated.function("complete_parameters")(params[:_N_MECH])
+    kinematics = generated.function("cylinder_kinematics")(x[0:4], x[4:8], completed)
+    velocity = kinematics[1]
+    acceleration = ca.jtimes(velocity, x, xdot)
+    truth = ca.Function(
+        "lift_truth",
+        [state, u],
+        [
+            ca.vertcat(
+                y[out["x_piston"]],
+                velocity,
+                acceleration,
+                y[out["p_A"]],
+                y[out["p_B"]],
+                xdot[STATE_NAMES.index("p_A")],
+                y[out["Q_pump"]],
+                y[out["F_act"]],
+                y[out["phi"]],
+                x[STATE_NAMES.index("theta_1")],
+                y[out["thetadd_1"]],
+                command,
+            )
+        ],
+        ["x", "u"],
+        ["truth"],
+    )
+    return ode, truth
+
+
+_TRUTH_NAMES = (
+    "x",
+    "v",
+    "a",
+    "p_a",
+    "p_b",
+    "dp_a",
+    "flow",
+    "force",
+    "phi",
+    "theta_1",
+    "thetadd_1",
+    "command",
+)
+
+
+def _load_case(load: BucketLoad, mass: float) -> BucketLoad:
+    """The load case scaled to ``mass``: same centre of gravity, same inertia per kg."""
+    return dataclasses.replace(load, mass=float(mass), inertia=load.inertia * mass / load.mass)
+
+
+def _parameter_columns(
+    loader: LoaderParameters, load: BucketLoad, masses: np.ndarray
+) -> np.ndarray:
+    """Plant parameter vectors, one column per sample (distinct masses computed once)."""
+    from loader_model.plant.plant_parameters import plant_parameter_vector
+
+    unique, index = np.unique(masses, return_inverse=True)
+    vectors = np.column_stack([plant_parameter_vector(loader, _load_case(load, m)) for m in unique])
+    return vectors[:, index]
 
 
 def synthesize(
     sensors: SensorOptions | None = None,
     profile: LiftProfile | None = None,
     *,
-    cylinder: EquivalentCylinder | None = None,
-    friction: dict[str, float] | None = None,
-    leakage: dict[str, float] | None = None,
-    charge_pressure_pa: float = 20e5,
-    charge_conductance: float = 2e-9,
-    max_flow_m3_s: float = 46e-6 * 40.0,
-    position_gain: float = 5.0,
+    loader: LoaderParameters | None = None,
+    load: BucketLoad | str = "full",
 ) -> SyntheticRecording:
-    """Simulate the lift test and log it with the sensor model (see the module docstring).
+    """Run the lift test on the plant and log it with the sensor model (module docstring).
 
     Parameters
     ----------
     sensors : SensorOptions, optional
         Sample rate, noise, quantisation, offsets, outliers and seed.
     profile : LiftProfile, optional
-        The extend/retract cycles.
-    cylinder : EquivalentCylinder, optional
-        Default: the shipped default loader with the full-load case's centre of gravity.
-    friction, leakage : dict, optional
-        True coefficients; default :data:`TABLE4` and :data:`TABLE5` (K_oil, k_Lp, k_Lv).
-    charge_pressure_pa, charge_conductance : float
-        Charge-line pressure p_c in Pa and the rod side's conductance G_c in m³/(s·Pa).
-    max_flow_m3_s : float
-        Pump flow limit Q_max (default 46 cm³/rev at 40 rev/s).
-    position_gain : float
-        k_x of the position feedback in 1/s.
+        The extend/retract cycles, load masses and the position law's gains.
+    loader : LoaderParameters, optional
+        The machine (default: the shipped loader, Table 4 and 5 values).
+    load : BucketLoad or str
+        Load case whose centre of gravity and inertia per kg place every load mass
+        (default ``"full"``).
+
+    Raises
+    ------
+    ValueError
+        For a non-positive sample rate or load mass, or an outlier fraction outside [0, 0.5).
+    RuntimeError
+        If the integrator fails.
     """
+    from loader_model.parameters import resolve_loader_and_load
+    from loader_model.plant.equilibrium import static_state
+
     sensors = sensors or SensorOptions()
     profile = profile or LiftProfile()
-    cyl = cylinder or EquivalentCylinder.from_parameters(default_loader(), bucket_load("full"))
-    fr = {**TABLE4, **(friction or {})}
-    lk = {**TABLE5, **(leakage or {})}
-    coefficients = np.array([fr[k] for k in ("f_s", "tau_s", "gamma", "f_c", "f_v")])
+    loader, load = resolve_loader_and_load(loader, load)
     if not sensors.sample_rate_hz > 0.0:
         raise ValueError(f"sample rate must be > 0 Hz; got {sensors.sample_rate_hz!r}")
     if not 0.0 <= sensors.outlier_fraction < 0.5:
         raise ValueError(f"outlier fraction must be in [0, 0.5); got {sensors.outlier_fraction!r}")
+    if min(profile.load_masses_kg) <= 0.0:
+        raise ValueError(f"load masses must be > 0 kg; got {profile.load_masses_kg!r}")
     rng = np.random.default_rng(sensors.seed)
-    t_fine, v_ref, x_ref, mass = _schedule(profile, rng, 1e-3)
-    a_p, alpha, k_oil = cyl.area_m2, cyl.alpha, lk["K_oil"]
-
-    def rhs(t: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """State derivative, load mass and pump flow; t scalar or (n,), y (4,) or (4, n)."""
-        x, v, p_a, p_b = y
-        m = np.interp(t, t_fine, mass)
-        q = a_p * (np.interp(t, t_fine, v_ref) + position_gain * (np.interp(t, t_fine, x_ref) - x))
-        q_a = max_flow_m3_s * np.tanh(q / max_flow_m3_s)
-        leak = lk["k_Lp"] * (p_a - p_b) + lk["k_Lv"] * v
-        f_f = friction_force(coefficients, np.atleast_1d(v), np.atleast_1d(p_a)).reshape(
-            np.shape(v)
-        )
-        acc = (a_p * (p_a - alpha * p_b) - f_f - cyl.load_force(m)) / cyl.inertia(m)
-        dp_a = k_oil / cyl.volume_a(x) * (q_a - a_p * v - leak)
-        dp_b = (
-            k_oil
-            / cyl.volume_b(x)
-            * (-charge_conductance * (p_b - charge_pressure_pa) + alpha * a_p * v + leak)
-        )
-        return np.array([v, acc, dp_a, dp_b]), m, q_a
-
-    # Start at rest in equilibrium: F_f(0) = 0, so A_p (p_A − α p_B) = F_L, p_B = p_c.
-    p_a0 = cyl.load_force(mass[0]) / a_p + alpha * charge_pressure_pa
-    y0 = np.array([x_ref[0], 0.0, float(p_a0), charge_pressure_pa])
-    t_samples = np.arange(0.0, t_fine[-1], 1.0 / sensors.sample_rate_hz)
-    solution = solve_ivp(
-        lambda t, y: rhs(t, y)[0],
-        (0.0, t_samples[-1]),
-        y0,
-        method="LSODA",
-        t_eval=t_samples,
-        rtol=1e-8,
-        atol=np.array([1e-9, 1e-9, 1.0, 1.0]),
-        max_step=0.01,
+    dt = 1.0 / sensors.sample_rate_hz
+    ode, truth_function = _lift_functions()
+    cyl = EquivalentCylinder.from_parameters(loader, load)
+    # p = 0 (the static state) is the operating boom angle whatever the load
+    x_static = float(cyl.position_from_boom_angle(np.array([loader.geometry.boom_angle]))[0])
+    t, v_ref, x_ref, mass = _schedule(profile, rng, dt, x_static)
+    params = _parameter_columns(loader, load, mass)
+    x0, u0 = static_state(params[:, 0])
+    n_pump = loader.pump.shaft_speed
+    z0 = u0 * n_pump / cyl.area_m2 / profile.integral_gain
+    gains = np.tile([[profile.position_gain], [profile.integral_gain]], (1, t.size))
+    controls = np.vstack((x_ref, v_ref, gains, params))
+    integrator = ca.integrator(
+        "lift",
+        "cvodes",
+        {
+            "x": (state := ca.SX.sym("s", x0.size + 1)),
+            "u": (u := ca.SX.sym("u", controls.shape[0])),
+            "ode": ode(state, u),
+        },
+        0.0,
+        t[1:],
+        {"abstol": 1e-8, "reltol": 1e-7, "max_num_steps": 100_000},
     )
-    if not solution.success:  # pragma: no cover - the stand-in model is benign
-        raise RuntimeError(f"synthetic lift test did not integrate: {solution.message}")
-    states = solution.y
-    derivative, masses, flows = rhs(t_samples, states)
-    truth = {
-        "x": states[0],
-        "v": states[1],
-        "a": derivative[1],
-        "p_a": states[2],
-        "p_b": states[3],
-        "dp_a": derivative[2],
-        "flow": flows,
-        "load_mass": masses,
-    }
+    start = np.append(x0, z0)
+    try:
+        states = np.asarray(integrator(x0=start, u=controls[:, :-1])["xf"], dtype=float)
+    except RuntimeError as error:
+        raise RuntimeError(f"synthetic lift test did not integrate: {error}") from error
+    states = np.column_stack((start, states))
+    values = np.asarray(truth_function.map(t.size)(states, controls), dtype=float)
+    truth = dict(zip(_TRUTH_NAMES, values, strict=True)) | {"load_mass": mass}
 
     def sense(true: np.ndarray, noise: float, step: float, offset: float) -> np.ndarray:
         measured = true + offset + noise * rng.standard_normal(true.size)
@@ -279,12 +374,24 @@ def synthesize(
     flow[outliers] = 0.0
     pressure = (o.pressure_noise_pa, o.pressure_step_pa, o.pressure_offset_pa)
     record = MeasurementRecord(
-        time_s=t_samples,
+        time_s=t,
         position_m=sense(truth["x"], o.position_noise_m, o.position_step_m, o.position_offset_m),
         p_a_pa=sense(truth["p_a"], *pressure),
         p_b_pa=sense(truth["p_b"], *pressure),
-        load_mass_kg=truth["load_mass"].copy(),
+        load_mass_kg=mass.copy(),
         flow_m3_s=flow,
     )
     truth["outliers"] = outliers.astype(float)
-    return SyntheticRecording(record, truth, cyl, {**fr, **lk})
+    fr, lk = loader.friction, loader.leakage
+    parameters = {
+        "f_s": fr.f_s,
+        "tau_s": fr.tau_s,
+        "gamma": fr.gamma,
+        "f_c": fr.f_c,
+        "f_v": fr.f_v,
+        "C": o.flow_offset_m3_s,
+        "K_oil": loader.hydraulics.bulk_modulus,
+        "k_Lp": lk.k_lp,
+        "k_Lv": lk.k_lv,
+    }
+    return SyntheticRecording(record, truth, cyl, parameters)
