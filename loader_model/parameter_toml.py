@@ -80,7 +80,14 @@ def _number(raw: Any, path: str, integer: bool) -> float | int:
         if not isinstance(raw, int):
             raise ValueError(f"{path}: value {raw!r} is not an integer")
         return raw
-    value = float(raw)
+    try:
+        value = float(raw)
+    except OverflowError:
+        shown = str(raw)[:20] + "..."
+        raise ValueError(
+            f"{path}: value {shown} ({len(str(abs(raw)))} digits) is not a finite float; "
+            "allowed: a finite number"
+        ) from None
     if not math.isfinite(value):
         raise ValueError(f"{path}: value {value!r} is not finite; allowed: a finite number")
     return value

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import difflib
 import functools
-import itertools
 import math
 import tomllib
 from collections.abc import Mapping, Sequence
@@ -25,6 +24,12 @@ from importlib import resources
 from pathlib import Path
 from typing import Any, TypeVar
 
+from loader_model.parameter_checks import (
+    COINCIDENCE_TOLERANCE_M,
+    check_combination,
+    check_loader,
+    check_ranges,
+)
 from loader_model.parameter_schema import (
     AccumulatorParameters,
     AxleTyre,
@@ -43,7 +48,7 @@ from loader_model.parameter_schema import (
     PumpParameters,
     TyreParameters,
 )
-from loader_model.parameter_toml import build, dumps, iter_leaves, leaf_metadata, to_raw
+from loader_model.parameter_toml import build, dumps, iter_leaves, to_raw
 
 __all__ = [
     "COINCIDENCE_TOLERANCE_M",
@@ -76,9 +81,6 @@ __all__ = [
     "validate",
 ]
 
-#: Two points closer than this are taken as coincident (degenerate geometry), in m.
-COINCIDENCE_TOLERANCE_M = 1e-3
-
 #: Names of the generated model's numeric parameters (the order belongs to ``derive``).
 MODEL_PARAMETER_NAMES = frozenset(
     "m_1 J_1 m_2 J_2 g A_x A_y B_x B_y C_x C_y D_x D_y S_x S_y N_x N_y E_x E_y G_x G_y "
@@ -101,79 +103,23 @@ _HEADER_FORMAT = (
 P = TypeVar("P", LoaderParameters, BucketLoad)
 
 
-def _get(obj: Any, path: str) -> Any:
-    for name in path.split("."):
-        obj = getattr(obj, name)
-    return obj
-
-
-def _distance(p: Point, q: Point) -> float:
-    return math.hypot(p[0] - q[0], p[1] - q[1])
-
-
-def _check_ranges(params: LoaderParameters | BucketLoad) -> None:
-    for path, cls, name in iter_leaves(type(params)):
-        meta = leaf_metadata(cls, name)
-        value = _get(params, path)
-        for item in value if isinstance(value, tuple) else (value,):
-            if not math.isfinite(item):
-                raise ValueError(f"{path} = {value!r} is not finite; allowed: a finite number")
-            if not meta["allowed"].contains(item):
-                raise ValueError(
-                    f"{path} = {value!r} {meta['unit']} is out of range; allowed: {meta['allowed']}"
-                )
-
-
-def _check_distinct(points: Mapping[str, Point]) -> None:
-    """Raise if two of the named points coincide (degenerate geometry)."""
-    for (name_p, p), (name_q, q) in itertools.combinations(points.items(), 2):
-        distance = _distance(p, q)
-        if distance < COINCIDENCE_TOLERANCE_M:
-            raise ValueError(
-                f"degenerate geometry: {name_p} = {p} and {name_q} = {q} coincide "
-                f"(distance {distance:g} m; allowed: >= {COINCIDENCE_TOLERANCE_M:g} m)"
-            )
-
-
-def _check_loader(params: LoaderParameters) -> None:
-    cyl, geo = params.cylinders, params.geometry
-    if cyl.rod_diameter >= cyl.piston_diameter:
-        raise ValueError(
-            f"cylinders.rod_diameter = {cyl.rod_diameter!r} m must be smaller than "
-            f"cylinders.piston_diameter = {cyl.piston_diameter!r} m"
-        )
-    names = ("A", "B", "C", "D", "E")
-    points = {f"geometry.{n}": getattr(geo, n) for n in names} | {"boom.cog": params.boom.cog}
-    _check_distinct(points)
-    if geo.A[0] <= geo.B[0]:
-        raise ValueError(
-            f"geometry.A = {geo.A} must be ahead of geometry.B = {geo.B}; allowed: A_x > B_x "
-            "(A is the front axle)"
-        )
-    length = _distance(geo.E, geo.C)
-    low, high = cyl.retracted_length, cyl.retracted_length + cyl.stroke
-    if not low <= length <= high:
-        raise ValueError(
-            f"geometry.E: cylinder length |E - C| = {length:.6g} m at the operating point is "
-            f"outside [{low:g}, {high:g}] m (cylinders.retracted_length, + cylinders.stroke)"
-        )
-
-
 def validate(params: P) -> P:
     """Check ranges and consistency of a parameter set; return it unchanged.
 
     Raises
     ------
     ValueError
-        Naming the field by dotted path (``tyres.front.k_y``), the value and the allowed range:
-        non-finite values; non-positive masses, inertias, stiffnesses, bulk modulus, volumes,
-        diameters, lengths; negative damping or friction; rod not thinner than piston; coincident
-        points among A, B, C, D, E and the boom centre of gravity; A not ahead of B; cylinder
-        length |E − C| outside [retracted length, retracted length + stroke].
+        Naming the field by dotted path (``tyres.front.k_y``), the value, the allowed range and
+        its reason: a value outside the plausible range of its field
+        (:mod:`loader_model.parameter_fields`), or a loader that is inconsistent
+        (:func:`loader_model.parameter_checks.check_loader`: rod too thick, barrel shorter than
+        the stroke, coincident points, A not ahead of B, cylinder on or beyond an end stop).
+        A loader with a bucket load is checked further by
+        :func:`loader_model.parameter_checks.check_combination`.
     """
-    _check_ranges(params)
+    check_ranges(params)
     if isinstance(params, LoaderParameters):
-        _check_loader(params)
+        check_loader(params)
     return params
 
 
@@ -281,14 +227,15 @@ def model_parameter_values(loader: LoaderParameters, load: BucketLoad) -> dict[s
     Raises
     ------
     ValueError
-        If the combined centre of gravity G coincides with A, B, C, D or E.
+        If the loader and the load are inconsistent at the static equilibrium (see
+        :func:`loader_model.parameter_checks.check_combination`).
     """
     boom, geo = loader.boom, loader.geometry
     m_2, cog, j_2 = combine_bodies(
         (boom.mass, load.mass), (boom.cog, load.cog), (boom.inertia, load.inertia)
     )
     points = {name: getattr(geo, name) for name in ("A", "B", "C", "D", "S", "N", "E")}
-    _check_distinct({f"geometry.{n}": points[n] for n in "ABCDE"} | {"combined G": cog})
+    check_combination(loader, load)
     values = {"m_1": loader.chassis.mass, "J_1": loader.chassis.inertia, "m_2": m_2, "J_2": j_2}
     values["g"] = loader.environment.gravity
     for name, (x, y) in (points | {"G": cog}).items():
@@ -322,4 +269,5 @@ def resolve_loader_and_load(
                 "nor an existing TOML file"
             )
         load = load_bucket_load(load)
+    check_combination(loader, load)
     return loader, load

@@ -1,0 +1,190 @@
+"""Range and consistency checks of the parameter sets, run by :func:`loader_model.parameters.validate`.
+
+Ranges come from each field's metadata (:mod:`loader_model.parameter_fields`); the consistency
+checks here are those that involve several fields. :func:`check_combination` checks a loader
+together with a bucket load at the static equilibrium (hand statics, no generated code), so that
+nothing that validates fails later in the model for a reason validation could have seen.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Mapping
+from typing import Any
+
+from loader_model.parameter_schema import BucketLoad, LoaderParameters, Point
+from loader_model.parameter_toml import iter_leaves, leaf_metadata
+
+__all__ = [
+    "COINCIDENCE_TOLERANCE_M",
+    "END_STOP_MARGIN_M",
+    "MAX_ROD_TO_PISTON_RATIO",
+    "MAX_STATIC_PRESSURE_PA",
+    "check_combination",
+    "check_distinct",
+    "check_loader",
+    "check_ranges",
+    "static_equilibrium",
+]
+
+#: Two points closer than this are taken as coincident (degenerate geometry), in m.
+COINCIDENCE_TOLERANCE_M = 1e-3
+#: The cylinder must be at least this far from either end stop at the operating point, in m
+#: (on its end stop it has no travel and the linear model of the hydraulic spring does not hold).
+END_STOP_MARGIN_M = 1e-3
+#: Largest rod-to-bore ratio: the annulus keeps at least 19 % of the piston area (area ratios of
+#: built cylinders are 1.1 to about 5).
+MAX_ROD_TO_PISTON_RATIO = 0.9
+#: Largest static piston-side pressure, Pa (500 bar, above the relief setting of mobile hydraulics).
+MAX_STATIC_PRESSURE_PA = 5e7
+
+
+def _get(obj: Any, path: str) -> Any:
+    for name in path.split("."):
+        obj = getattr(obj, name)
+    return obj
+
+
+def _distance(p: Point, q: Point) -> float:
+    return math.hypot(p[0] - q[0], p[1] - q[1])
+
+
+def shown(value: Any) -> str:
+    """``repr`` of a value for a message, with integers of more than 20 digits abbreviated."""
+    if isinstance(value, tuple):
+        return "(" + ", ".join(shown(v) for v in value) + ")"
+    if isinstance(value, int) and len(str(abs(value))) > 20:
+        return f"{str(value)[:20]}... ({len(str(abs(value)))} digits)"
+    return repr(value)
+
+
+def check_ranges(params: LoaderParameters | BucketLoad) -> None:
+    """Raise ValueError naming field, value, range and reason for a value out of its range."""
+    for path, cls, name in iter_leaves(type(params)):
+        meta = leaf_metadata(cls, name)
+        value = _get(params, path)
+        for item in value if isinstance(value, tuple) else (value,):
+            try:
+                finite = math.isfinite(item)
+            except (TypeError, OverflowError):
+                finite = False
+            if not finite or not meta["allowed"].contains(item):
+                raise ValueError(
+                    f"{path} = {shown(value)} {meta['unit']} is out of range; allowed: "
+                    f"{meta['allowed'].describe()}"
+                )
+
+
+def check_distinct(points: Mapping[str, Point]) -> None:
+    """Raise if two of the named points coincide (degenerate geometry)."""
+    for (name_p, p), (name_q, q) in itertools.combinations(points.items(), 2):
+        distance = _distance(p, q)
+        if distance < COINCIDENCE_TOLERANCE_M:
+            raise ValueError(
+                f"degenerate geometry: {name_p} = {p} and {name_q} = {q} coincide "
+                f"(distance {distance:g} m; allowed: >= {COINCIDENCE_TOLERANCE_M:g} m)"
+            )
+
+
+def check_loader(params: LoaderParameters) -> None:
+    """Consistency of a loader: cylinder proportions and stroke, distinct points, axle order."""
+    cyl, geo = params.cylinders, params.geometry
+    if cyl.rod_diameter > MAX_ROD_TO_PISTON_RATIO * cyl.piston_diameter:
+        raise ValueError(
+            f"cylinders.rod_diameter = {cyl.rod_diameter!r} m must be at most "
+            f"{MAX_ROD_TO_PISTON_RATIO:g} x cylinders.piston_diameter = {cyl.piston_diameter!r} m "
+            "(an annulus of at least 19 % of the piston area, as built cylinders have)"
+        )
+    if cyl.retracted_length <= cyl.stroke:
+        raise ValueError(
+            f"cylinders.retracted_length = {cyl.retracted_length!r} m must exceed "
+            f"cylinders.stroke = {cyl.stroke!r} m (the barrel holds the stroke)"
+        )
+    names = ("A", "B", "C", "D", "E")
+    points = {f"geometry.{n}": getattr(geo, n) for n in names} | {"boom.cog": params.boom.cog}
+    check_distinct(points)
+    if geo.A[0] <= geo.B[0]:
+        raise ValueError(
+            f"geometry.A = {geo.A} must be ahead of geometry.B = {geo.B}; allowed: A_x > B_x "
+            "(A is the front axle)"
+        )
+    length = _distance(geo.E, geo.C)
+    low = cyl.retracted_length + END_STOP_MARGIN_M
+    high = cyl.retracted_length + cyl.stroke - END_STOP_MARGIN_M
+    if not low <= length <= high:
+        raise ValueError(
+            f"geometry.E: cylinder length |E - C| = {length:.6g} m at the operating point is "
+            f"outside [{low:.6g}, {high:.6g}] m (cylinders.retracted_length to + cylinders.stroke, "
+            f"{END_STOP_MARGIN_M * 1e3:g} mm clear of each end stop)"
+        )
+
+
+def static_equilibrium(loader: LoaderParameters, load: BucketLoad) -> dict[str, float]:
+    """Static tyre loads and cylinder force at p = 0 by hand statics (no generated code).
+
+    Vertical force balance and moments about H for the whole machine give the axle loads; moments
+    about the boom pivot D for body 2 give the total cylinder force along C -> E (positive pushes).
+
+    Returns
+    -------
+    dict
+        ``F_Ay0``, ``F_By0`` (N, positive in compression), ``F_act0`` (N), ``p_A0`` (Pa, the
+        piston-side pressure with the rod side at the charge pressure) and the combined centre of
+        gravity ``G`` of boom and load.
+    """
+    geo, boom, cyl = loader.geometry, loader.boom, loader.cylinders
+    g = loader.environment.gravity
+    m_1, m_2 = loader.chassis.mass, boom.mass + load.mass
+    g_x = (boom.mass * boom.cog[0] + load.mass * load.cog[0]) / m_2
+    g_y = (boom.mass * boom.cog[1] + load.mass * load.cog[1]) / m_2
+    weight = (m_1 + m_2) * g
+    f_a = (m_2 * g * g_x - weight * geo.B[0]) / (geo.A[0] - geo.B[0])
+    length = _distance(geo.E, geo.C)
+    u_x, u_y = (geo.E[0] - geo.C[0]) / length, (geo.E[1] - geo.C[1]) / length
+    arm = (geo.E[0] - geo.D[0]) * u_y - (geo.E[1] - geo.D[1]) * u_x
+    force = m_2 * g * (g_x - geo.D[0]) / arm if arm != 0.0 else math.inf
+    pressure = (force / cyl.count + loader.hydraulics.charge_pressure * cyl.annulus_area) / (
+        cyl.piston_area
+    )
+    return {"F_Ay0": f_a, "F_By0": weight - f_a, "F_act0": force, "p_A0": pressure, "G": (g_x, g_y)}
+
+
+def check_combination(loader: LoaderParameters, load: BucketLoad) -> None:
+    """Consistency of a loader with a bucket load at the static equilibrium.
+
+    Raises
+    ------
+    ValueError
+        If the combined centre of gravity coincides with a point, an axle lifts off (the machine
+        tips), the cylinder would have to pull or hold more than
+        :data:`MAX_STATIC_PRESSURE_PA`, or the accumulator precharge is not below the static
+        piston pressure (it would hold no oil).
+    """
+    statics = static_equilibrium(loader, load)
+    geo = loader.geometry
+    check_distinct(
+        {f"geometry.{n}": getattr(geo, n) for n in "ABCDE"} | {"combined G": statics["G"]}
+    )
+    where = f"bucket load of {load.mass:g} kg at cog {load.cog}"
+    for axle, key in (("front (A)", "F_Ay0"), ("rear (B)", "F_By0")):
+        if not statics[key] > 0.0:
+            raise ValueError(
+                f"{where}: the static {axle} axle load is {statics[key]:.4g} N; allowed: > 0 "
+                "(the machine must stand on both axles; check load.mass, load.cog, boom.cog, "
+                "geometry.A and geometry.B)"
+            )
+    pressure = statics["p_A0"]
+    if not (statics["F_act0"] > 0.0 and pressure <= MAX_STATIC_PRESSURE_PA):
+        raise ValueError(
+            f"{where}: the static lift-cylinder force is {statics['F_act0']:.4g} N, piston "
+            f"pressure {pressure / 1e5:.4g} bar; allowed: a pushing force with at most "
+            f"{MAX_STATIC_PRESSURE_PA / 1e5:g} bar (the piston side carries the boom; check "
+            "load.mass, the centres of gravity, geometry.C, D, E and cylinders.piston_diameter)"
+        )
+    precharge = loader.accumulator.precharge_pressure
+    if precharge >= pressure:
+        raise ValueError(
+            f"accumulator.precharge_pressure = {precharge!r} Pa must be below the static piston "
+            f"pressure {pressure:.6g} Pa with the {where} (a higher precharge holds no oil)"
+        )
