@@ -18,12 +18,14 @@ from __future__ import annotations
 import difflib
 import functools
 import math
+import os
 import tomllib
 from collections.abc import Mapping, Sequence
 from importlib import resources
 from pathlib import Path
 from typing import Any, TypeVar
 
+from loader_model.files import read_text
 from loader_model.parameter_checks import (
     COINCIDENCE_TOLERANCE_M,
     check_combination,
@@ -131,13 +133,17 @@ def _parse(cls: type[P], text: str, origin: str) -> P:
 
 
 def load_loader(path: str | Path) -> LoaderParameters:
-    """Read and validate a loader parameter file (see :func:`save` for the layout)."""
-    return _parse(LoaderParameters, Path(path).read_text(encoding="utf-8"), str(path))
+    """Read and validate a loader parameter file (see :func:`save` for the layout).
+
+    The file must be a readable regular file of UTF-8 text, with or without a byte-order mark
+    (:func:`loader_model.files.read_text`); every error names the file.
+    """
+    return _parse(LoaderParameters, read_text(path, "loader parameter file"), str(path))
 
 
 def load_bucket_load(path: str | Path) -> BucketLoad:
-    """Read and validate a bucket-load file (one load case)."""
-    return _parse(BucketLoad, Path(path).read_text(encoding="utf-8"), str(path))
+    """Read and validate a bucket-load file (one load case); see :func:`load_loader`."""
+    return _parse(BucketLoad, read_text(path, "bucket load file"), str(path))
 
 
 def save(params: LoaderParameters | BucketLoad, path: str | Path) -> None:
@@ -256,18 +262,25 @@ def resolve_loader_and_load(
     """
     if loader is None:
         loader = default_loader()
-    elif not isinstance(loader, LoaderParameters):
-        if not Path(loader).is_file():
-            raise ValueError(f"loader parameter file {str(loader)!r} does not exist")
+    elif isinstance(loader, str | os.PathLike):
         loader = load_loader(loader)
+    elif not isinstance(loader, LoaderParameters):
+        raise ValueError(
+            f"loader must be a LoaderParameters, a path to its TOML file or None; got {loader!r}"
+        )
     if isinstance(load, str) and load in LOAD_CASES:
         load = bucket_load(load)
-    elif not isinstance(load, BucketLoad):
-        if not Path(load).is_file():
+    elif isinstance(load, str | os.PathLike):
+        if not os.path.lexists(load):
             raise ValueError(
-                f"load {str(load)!r} is neither a load case {list(LOAD_CASES)} "
+                f"load {os.fspath(load)!r} is neither a load case {list(LOAD_CASES)} "
                 "nor an existing TOML file"
             )
         load = load_bucket_load(load)
+    elif not isinstance(load, BucketLoad):
+        raise ValueError(
+            f"load must be a BucketLoad, a path to its TOML file or one of {list(LOAD_CASES)}; "
+            f"got {load!r}"
+        )
     check_combination(loader, load)
     return loader, load

@@ -118,7 +118,7 @@ def test_cli_main_runs_the_command_and_maps_errors_to_exit_2(
     bad.write_text("time,z\n0,1\n0.004,nan\n", encoding="utf-8")
     plot = tmp_path / "plot.png"
     assert cli.main(["iso2631", str(bad), "--plot-weightings", str(plot)]) == 2
-    assert "column 'z' must be finite; got nan in data row 2" in capsys.readouterr().err
+    assert "column 'z' must be finite; got nan on line 3" in capsys.readouterr().err
     assert not plot.exists()  # a failed command writes no partial output
 
 

@@ -13,6 +13,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
 
+import numpy as np
+
 from loader_model.iso2631._checks import as_positive
 from loader_model.iso2631.exposure import (
     HEALTH_K_FACTORS,
@@ -59,10 +61,7 @@ PAPER_K_FACTORS: Mapping[str, float] = MappingProxyType(
 
 @dataclass(frozen=True)
 class AxisEvaluation:
-    """ISO 2631-1 values of one axis; accelerations in ``unit``, VDVs in ``unit`` x s^0.25.
-
-    ``crest_factor`` is NaN when the weighted signal is zero everywhere.
-    """
+    """ISO 2631-1 values of one axis; accelerations in ``unit``, VDVs in ``unit`` x s^0.25."""
 
     axis: str
     weighting: str
@@ -124,6 +123,14 @@ def evaluate_record(
     RecordEvaluation
         Values per axis, in the record's axis order, and a_v of Eq. 50.
     """
+    for what, overrides in (("weightings", weightings), ("k_factors", k_factors)):
+        for axis in overrides or {}:
+            check_axis_name(axis, f"{what} axis")
+            if axis not in record.axes:
+                raise ValueError(
+                    f"{what}[{axis!r}]: axis {axis!r} is not in the record; its axes are "
+                    f"{list(record.axes)}"
+                )
     axis_weightings = _merged(DEFAULT_AXIS_WEIGHTINGS, weightings, "weightings")
     axis_k_factors = _merged(COMFORT_K_FACTORS, k_factors, "k_factors")
     evaluations = []
@@ -135,6 +142,12 @@ def evaluate_record(
             raise ValueError(f"k_factors[{axis!r}] must be a finite number >= 0; got {k_factor!r}")
         weighted = weight_acceleration(acceleration, record.sample_rate_hz, weighting)
         rms = weighted_rms(weighted)
+        if not rms > 1e-9 * float(np.max(np.abs(acceleration))):  # zero up to rounding
+            raise ValueError(
+                f"axis {axis!r} carries no vibration (weighted r.m.s. 0: an all-zero or constant "
+                "channel, e.g. a disconnected sensor); its crest factor is undefined. Remove the "
+                "axis or check the sensor"
+            )
         evaluations.append(
             AxisEvaluation(
                 axis=axis,
@@ -142,7 +155,7 @@ def evaluate_record(
                 k_factor=float(k_factor),
                 unit=axis_unit(axis),
                 weighted_rms=rms,
-                crest_factor=crest_factor(weighted) if rms > 0.0 else math.nan,
+                crest_factor=crest_factor(weighted),
                 mtvv=maximum_transient_vibration_value(
                     weighted,
                     record.sample_rate_hz,
