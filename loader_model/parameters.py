@@ -56,6 +56,7 @@ __all__ = [
     "COINCIDENCE_TOLERANCE_M",
     "LOAD_CASES",
     "MODEL_PARAMETER_NAMES",
+    "PARAMETER_SUFFIXES",
     "AccumulatorParameters",
     "AxleTyre",
     "BoomParameters",
@@ -89,6 +90,8 @@ MODEL_PARAMETER_NAMES = frozenset(
     "k_Ax k_Ay c_Ax c_Ay k_Bx k_By c_Bx c_By".split()
 )
 
+#: Suffixes of parameter files.
+PARAMETER_SUFFIXES = (".toml",)
 _LOAD_CASES = {"empty": "load_empty.toml", "full": "load_full.toml"}
 #: Names of the shipped bucket-load cases (paper section 5.3: 340 kg and 770 kg).
 LOAD_CASES: tuple[str, ...] = tuple(_LOAD_CASES)
@@ -148,9 +151,20 @@ def load_bucket_load(path: str | Path) -> BucketLoad:
 
 def save(params: LoaderParameters | BucketLoad, path: str | Path) -> None:
     """Write a parameter set as TOML; :func:`load_loader` / :func:`load_bucket_load` read it
-    back equal (floats are written with ``repr``)."""
-    header = _HEADERS[type(params)] + _HEADER_FORMAT
-    Path(path).write_text(dumps(to_raw(params), header), encoding="utf-8", newline="\n")
+    back equal (floats are written with ``repr``).
+
+    The path must end in ``.toml``; the file is written atomically with the user's umask
+    permissions (:func:`loader_model.export.write_atomically`).
+    """
+    from loader_model.export import write_atomically
+
+    text = dumps(to_raw(params), _HEADERS[type(params)] + _HEADER_FORMAT)
+    write_atomically(
+        path,
+        lambda temporary: temporary.write_text(text, encoding="utf-8", newline="\n"),
+        PARAMETER_SUFFIXES,
+        "parameter file",
+    )
 
 
 def replace(params: P, updates: Mapping[str, Any], source: str | None = None) -> P:

@@ -133,9 +133,12 @@ def test_cli_main_runs_the_command_and_maps_errors_to_exit_2(
         (["{csv}", "--integration-time", "100"], r"integration_time_s must span 1 to 2000 samples"),
         (
             ["--plot-weightings", "{dir}/w.jpg"],
-            r"plot path must end in one of \('.png', '.pdf', '.svg'\)",
+            r"has suffix '\.jpg'; allowed: \['\.png', '\.pdf', '\.svg'\]",
         ),
-        (["--plot-weightings", "{dir}/missing/w.png"], r"plot path folder does not exist: "),
+        (
+            ["--plot-weightings", "{dir}/missing/w.png"],
+            r"output folder '.*missing' of --plot-weightings '.*w\.png' does not exist",
+        ),
     ],
 )
 def test_bad_invocations_raise_clear_errors(

@@ -90,6 +90,7 @@ def _k_factors(pairs: list[tuple[str, str]]) -> dict[str, float]:
 
 def run(args: argparse.Namespace) -> int:
     """Evaluate ``args.data`` and print the table; write the plot if asked. Returns 0."""
+    from loader_model.export import check_output_path
     from loader_model.iso2631 import (
         evaluate_record,
         format_evaluation,
@@ -97,7 +98,10 @@ def run(args: argparse.Namespace) -> int:
         plot_weightings,
         read_vibration_csv,
     )
+    from loader_model.iso2631.plot import PLOT_SUFFIXES
 
+    if args.plot_weightings is not None:
+        check_output_path(args.plot_weightings, PLOT_SUFFIXES, "--plot-weightings")
     if args.data is None and args.plot_weightings is None:
         raise ValueError("give DATA.csv and/or --plot-weightings FILE.png; got neither")
     if args.exposure_hours <= 0.0 or args.exposure_hours != args.exposure_hours:
