@@ -171,7 +171,7 @@ def test_bad_evaluation_options_are_refused() -> None:
     ):
         evaluate_record(record, weightings={"heave": "Wk"})
     with pytest.raises(
-        ValueError, match=r"k_factors\['pitch'\] must be a finite number >= 0; got -0.4"
+        ValueError, match=r"k_factors\['pitch'\] must be a number in \[0, 2\] .*; got -0.4"
     ):
         evaluate_record(record, k_factors={"pitch": -0.4})
     with pytest.raises(

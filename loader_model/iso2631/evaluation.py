@@ -37,6 +37,7 @@ from loader_model.iso2631.weightings import check_weighting_name
 __all__ = [
     "COMFORT_K_FACTORS",
     "DEFAULT_AXIS_WEIGHTINGS",
+    "MAX_K_FACTOR",
     "PAPER_K_FACTORS",
     "AxisEvaluation",
     "RecordEvaluation",
@@ -45,6 +46,8 @@ __all__ = [
     "health_assessment",
 ]
 
+#: Largest accepted k factor (ISO 2631-1 k factors lie between 0.2 and 1.4).
+MAX_K_FACTOR = 2.0
 #: Weighting per axis, seated person, seat surface (ISO 2631-1 Table 1 / 7.2.2, 8.2.2).
 DEFAULT_AXIS_WEIGHTINGS: Mapping[str, str] = MappingProxyType(
     {"x": "Wd", "y": "Wd", "z": "Wk", "roll": "We", "pitch": "We", "yaw": "We"}
@@ -138,8 +141,15 @@ def evaluate_record(
         weighting = str(axis_weightings[axis])
         check_weighting_name(weighting)
         k_factor = axis_k_factors[axis]
-        if not isinstance(k_factor, int | float) or not math.isfinite(k_factor) or k_factor < 0:
-            raise ValueError(f"k_factors[{axis!r}] must be a finite number >= 0; got {k_factor!r}")
+        if (
+            isinstance(k_factor, bool)
+            or not isinstance(k_factor, int | float)
+            or not 0.0 <= k_factor <= MAX_K_FACTOR
+        ):
+            raise ValueError(
+                f"k_factors[{axis!r}] must be a number in [0, {MAX_K_FACTOR:g}] (ISO 2631-1 uses "
+                f"0.2 to 1.4); got {k_factor!r}"
+            )
         weighted = weight_acceleration(acceleration, record.sample_rate_hz, weighting)
         rms = weighted_rms(weighted)
         if not rms > 1e-9 * float(np.max(np.abs(acceleration))):  # zero up to rounding
