@@ -40,6 +40,13 @@ MAX_ROD_TO_PISTON_RATIO = 0.9
 MAX_STATIC_PRESSURE_PA = 5e7
 
 
+_PRESSURE_FIELDS = (
+    "boom.mass, boom.cog, load.mass, load.cog, geometry.C, geometry.D, geometry.E, "
+    "cylinders.count, cylinders.piston_diameter, cylinders.rod_diameter, "
+    "hydraulics.charge_pressure and environment.gravity"
+)
+
+
 def _get(obj: Any, path: str) -> Any:
     for name in path.split("."):
         obj = getattr(obj, name)
@@ -164,15 +171,16 @@ def check_combination(loader: LoaderParameters, load: BucketLoad) -> None:
     statics = static_equilibrium(loader, load)
     geo = loader.geometry
     check_distinct(
-        {f"geometry.{n}": getattr(geo, n) for n in "ABCDE"} | {"combined G": statics["G"]}
+        {f"geometry.{n}": getattr(geo, n) for n in "ABCDE"}
+        | {"combined G of boom.cog and load.cog": statics["G"]}
     )
     where = f"bucket load of {load.mass:g} kg at cog {load.cog}"
     for axle, key in (("front (A)", "F_Ay0"), ("rear (B)", "F_By0")):
         if not statics[key] > 0.0:
             raise ValueError(
                 f"{where}: the static {axle} axle load is {statics[key]:.4g} N; allowed: > 0 "
-                "(the machine must stand on both axles; check load.mass, load.cog, boom.cog, "
-                "geometry.A and geometry.B)"
+                "(the machine must stand on both axles; check chassis.mass, boom.mass, boom.cog, "
+                "load.mass, load.cog, geometry.A and geometry.B)"
             )
     pressure = statics["p_A0"]
     if not (statics["F_act0"] > 0.0 and pressure <= MAX_STATIC_PRESSURE_PA):
@@ -180,11 +188,12 @@ def check_combination(loader: LoaderParameters, load: BucketLoad) -> None:
             f"{where}: the static lift-cylinder force is {statics['F_act0']:.4g} N, piston "
             f"pressure {pressure / 1e5:.4g} bar; allowed: a pushing force with at most "
             f"{MAX_STATIC_PRESSURE_PA / 1e5:g} bar (the piston side carries the boom; check "
-            "load.mass, the centres of gravity, geometry.C, D, E and cylinders.piston_diameter)"
+            f"{_PRESSURE_FIELDS})"
         )
     precharge = loader.accumulator.precharge_pressure
     if precharge >= pressure:
         raise ValueError(
             f"accumulator.precharge_pressure = {precharge!r} Pa must be below the static piston "
-            f"pressure {pressure:.6g} Pa with the {where} (a higher precharge holds no oil)"
+            f"pressure {pressure:.6g} Pa with the {where} (a higher precharge holds no oil; "
+            f"the static pressure depends on {_PRESSURE_FIELDS})"
         )

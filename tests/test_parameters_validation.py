@@ -292,5 +292,8 @@ def test_combined_centre_of_gravity_must_not_coincide_with_a_point() -> None:
     bx, by = loader.boom.cog
     cog = (((m_b + m_l) * ex - m_b * bx) / m_l, ((m_b + m_l) * ey - m_b * by) / m_l)
     on_e = replace(load, {"cog": cog})
-    with pytest.raises(ValueError, match=r"geometry\.E = .* and combined G = .* coincide"):
+    with pytest.raises(
+        ValueError,
+        match=r"geometry\.E = .* and combined G of boom\.cog and load\.cog = .* coincide",
+    ):
         model_parameter_values(loader, on_e)
