@@ -120,13 +120,16 @@ def run(args: argparse.Namespace) -> int:
     report = None
     if args.data is not None:
         record = read_vibration_csv(args.data)
-        evaluation = evaluate_record(
-            record,
-            weightings=_once("--weighting", args.weighting),
-            k_factors=_k_factors(list(_once("--k-factor", args.k_factor).items())),
-            integration_time_s=args.integration_time,
-            running_rms_method=args.running_rms,
-        )
+        try:
+            evaluation = evaluate_record(
+                record,
+                weightings=_once("--weighting", args.weighting),
+                k_factors=_k_factors(list(_once("--k-factor", args.k_factor).items())),
+                integration_time_s=args.integration_time,
+                running_rms_method=args.running_rms,
+            )
+        except ValueError as error:
+            raise ValueError(f"{args.data}: {error}") from None
         assessment = health_assessment(evaluation, args.exposure_hours * 3600.0)
         report = format_evaluation(evaluation, assessment, title=f"{args.data}:")
     if args.plot_weightings is not None:
