@@ -12,11 +12,12 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["finite_scalar", "finite_vector"]
+__all__ = ["finite_scalar", "finite_vector", "real_array"]
 
 
-def _real_array(name: str, value: Any, size: int) -> np.ndarray:
-    expected = f"real numbers with shape ({size},)"
+def real_array(name: str, value: Any, expected: str = "real numbers") -> np.ndarray:
+    """Return ``value`` as a float array, refusing strings, booleans, complex values and
+    objects that are not real numbers with a ValueError naming ``name``."""
     if isinstance(value, str | bytes):
         raise ValueError(f"{name} must be {expected}; got the string {value!r}")
     try:
@@ -61,7 +62,7 @@ def finite_vector(
     unit : str
         Unit of ``limit`` for the message.
     """
-    array = _real_array(name, value, size)
+    array = real_array(name, value, f"real numbers with shape ({size},)")
     if array.ndim == 0 and size == 1:
         array = array.reshape(1)
     if array.shape != (size,):

@@ -222,3 +222,25 @@ def test_csv_comments_and_blank_lines_are_skipped(tmp_path: Path) -> None:
     assert record.sample_rate_hz == pytest.approx(2.0, rel=1e-12)
     with pytest.raises(ValueError, match=r"no header row; expected columns 'time' and some of"):
         read_vibration_csv(write_csv(tmp_path / "e.csv", "# only a comment", []))
+
+
+@pytest.mark.parametrize(
+    ("axes", "message"),
+    [
+        ({"z": ["1"] * 10}, r"axis 'z' must be a 1-D array of real numbers; got \['1', '1'"),
+        ({"z": [True] * 10}, r"axis 'z' must be a 1-D array of real numbers, not booleans"),
+        ({"z": np.ones(10) + 1j}, r"axis 'z' must be a 1-D array of real numbers; got complex"),
+        ({"z": np.full(10, 1e200)}, r"axis 'z' = 1e\+200 m/s² at index 0 is implausible"),
+    ],
+)
+def test_record_api_refuses_what_the_csv_reader_refuses(axes: dict, message: str) -> None:
+    with pytest.raises(ValueError, match=message):
+        VibrationRecord(time_s=np.arange(10) / 100.0, axes=axes)
+
+
+@pytest.mark.parametrize("rate", [True, "200", 10**400])
+def test_sample_rate_must_be_a_real_number(rate: object) -> None:
+    from loader_model.iso2631 import weight_acceleration
+
+    with pytest.raises(ValueError, match=r"sample_rate_hz must be a positive number in Hz"):
+        weight_acceleration(np.zeros(4000), rate, "Wk")  # type: ignore[arg-type]
