@@ -159,6 +159,10 @@ def _header(lines: Iterator[str], name: str) -> list[str]:
             break
     else:
         raise ValueError(f"{name}: no header row; expected columns 'time' and some of {AXES}")
+    if "" in header:
+        raise ValueError(
+            f"{name}: header column {header.index('') + 1} has no name; got header {header}"
+        )
     duplicates = sorted({column for column in header if header.count(column) > 1})
     if duplicates:
         raise ValueError(f"{name}: duplicate column(s) {duplicates} in header {header}")
