@@ -20,6 +20,15 @@ def real_array(name: str, value: Any, expected: str = "real numbers") -> np.ndar
     objects that are not real numbers with a ValueError naming ``name``."""
     if isinstance(value, str | bytes):
         raise ValueError(f"{name} must be {expected}; got the string {value!r}")
+    if not isinstance(value, np.ndarray):  # a list may mix booleans into floats: look inside
+        try:
+            items = np.asarray(value, dtype=object).ravel().tolist()
+        except (TypeError, ValueError):
+            raise ValueError(f"{name} must be {expected}; got {value!r}") from None
+        if any(isinstance(v, bool | np.bool_) for v in items):
+            raise ValueError(f"{name} must be {expected}, not booleans; got {value!r}")
+        if any(isinstance(v, complex | np.complexfloating) for v in items):
+            raise ValueError(f"{name} must be {expected}; got complex values {value!r}")
     try:
         array = np.asarray(value)
     except (TypeError, ValueError, OverflowError):

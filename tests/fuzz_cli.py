@@ -18,13 +18,17 @@ from __future__ import annotations
 
 import contextlib
 import io
+import math
 import os
 import signal
 import sys
 import tempfile
 import tomllib
 from collections import Counter
+from collections.abc import Callable
 from pathlib import Path
+
+import numpy as np
 
 from loader_model.cli import main
 from loader_model.parameter_schema import BucketLoad, LoaderParameters
@@ -292,6 +296,103 @@ def option_cases(folder: Path) -> list[tuple[list[str], list[str], bool, list[Pa
     return cases
 
 
+API_VALUES: list[object] = [
+    0,
+    -1.0,
+    1e-300,
+    1e30,
+    1e300,
+    10**400,
+    math.nan,
+    math.inf,
+    True,
+    "1",
+    1j,
+    [1.0, 2.0],
+    None,
+]
+
+
+def _api_call(call: Callable[[], object], names: list[str], valid: bool) -> str:
+    """Classify one API call: ValueError naming one of ``names`` is clear."""
+    signal.signal(signal.SIGALRM, _alarm)
+    signal.alarm(TIME_LIMIT_S)
+    try:
+        result = call()
+    except ValueError as error:
+        return "clear" if any(name in str(error) for name in names) else "unnamed"
+    except _Timeout:
+        return "hang"
+    except Exception:  # this is what is being counted
+        return "traceback"
+    finally:
+        signal.alarm(0)
+    finite = all(np.all(np.isfinite(np.asarray(v, dtype=float))) for v in _arrays(result))
+    if not finite:
+        return "nan"
+    return "valid" if valid else "silent"
+
+
+def _plausible(value: object, allowed: object) -> bool:
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        return False
+    try:
+        number = float(value)
+    except OverflowError:
+        return False
+    return math.isfinite(number) and allowed.contains(number)  # type: ignore[attr-defined]
+
+
+def _arrays(result: object) -> list[object]:
+    if isinstance(result, dict):
+        return list(result.values())
+    if hasattr(result, "A"):
+        return [result.A, result.B, result.C]
+    return [] if result is None or not isinstance(result, np.ndarray | float) else [result]
+
+
+def api_cases() -> list[tuple[str, str]]:
+    """(argument, outcome) of every model parameter and method argument with bad values."""
+    from loader_model.dynamics import LoaderDynamics
+    from loader_model.model_parameter_checks import MODEL_PARAMETER_RANGES
+    from loader_model.parameters import bucket_load, default_loader, model_parameter_values
+
+    good = model_parameter_values(default_loader(), bucket_load("empty"))
+    model = LoaderDynamics(good)
+    outcomes = []
+    for name in good:
+        for value in API_VALUES:
+            if _plausible(value, MODEL_PARAMETER_RANGES[name]) or (name == "g" and value == 0):
+                continue  # in range (g = 0: the documented analysis without gravity)
+            outcome = _api_call(
+                lambda n=name, v=value: LoaderDynamics(good | {n: v}), [name], False
+            )
+            outcomes.append((f"LoaderDynamics({name}=...)", outcome))
+    shapes = {"p": 4, "pd": 4, "force_N": 1, "road_m": 4, "road_rate_m_s": 4, "disturbance": 3}
+    for argument, size in shapes.items():
+        for value in API_VALUES:
+            bad = value if size == 1 else [value] + [0.0] * (size - 1)
+            if not isinstance(value, bool) and value in (0, -1.0, 1e-300):
+                continue  # plausible values
+            arguments = {"p": np.zeros(4), "pd": np.zeros(4)} | {argument: bad}
+            for method in ("forward_dynamics", "linearise"):
+                default = argument == "force_N" and value is None  # None: the static force
+                outcome = _api_call(
+                    lambda m=method, a=arguments: getattr(model, m)(**a), [argument], default
+                )
+                outcomes.append((f"{method}({argument}=...)", outcome))
+    for value in API_VALUES:
+        outcome = _api_call(
+            lambda v=value: LoaderDynamics.from_parameters(v), ["loader"], value is None
+        )
+        outcomes.append(("from_parameters(loader=...)", outcome))
+        outcome = _api_call(
+            lambda v=value: LoaderDynamics.from_parameters(None, v), ["load"], False
+        )
+        outcomes.append(("from_parameters(load=...)", outcome))
+    return outcomes
+
+
 def main_fuzz() -> int:
     counts: Counter[str] = Counter()
     failures = []
@@ -310,6 +411,10 @@ def main_fuzz() -> int:
                 counts[(group, outcome)] += 1
                 if outcome not in ("clear", "valid"):
                     failures.append((outcome, argv, stderr.strip()[-300:]))
+        for call, outcome in api_cases():
+            counts[("api", outcome)] += 1
+            if outcome not in ("clear", "valid"):
+                failures.append((outcome, [call], ""))
     total = sum(counts.values())
     for (group, outcome), count in sorted(counts.items()):
         print(f"{group:<8} {outcome:<10} {count}")

@@ -136,3 +136,11 @@ def test_constructor_and_factory_name_wrong_argument_types() -> None:
         LoaderDynamics.from_parameters(3)
     with pytest.raises(ValueError, match=r"load must be a BucketLoad, a path .*; got True"):
         LoaderDynamics.from_parameters(None, True)
+
+
+def test_a_boolean_inside_a_list_of_floats_is_refused(model: LoaderDynamics) -> None:
+    # numpy would turn [True, 0.0, ...] into [1.0, 0.0, ...] silently
+    with pytest.raises(ValueError, match=r"p must be real numbers with shape \(4,\), not booleans"):
+        model.forward_dynamics([True, 0.0, 0.0, 0.0], np.zeros(4))
+    with pytest.raises(ValueError, match=r"road_m must be real .*; got complex values"):
+        model.forward_dynamics(np.zeros(4), np.zeros(4), road_m=[1j, 0.0, 0.0, 0.0])
