@@ -48,8 +48,9 @@ def check_output_path(
         mode = os.stat(target).st_mode
     except FileNotFoundError:
         mode = None
-    except OSError as error:
-        raise ValueError(f"{what} {name!r} cannot be written: {error.strerror}") from None
+    except (OSError, ValueError) as error:  # ValueError: a NUL byte in the path
+        reason = getattr(error, "strerror", None) or str(error)
+        raise ValueError(f"{what} {name!r} cannot be written: {reason}") from None
     if mode is not None and stat.S_ISDIR(mode):
         raise ValueError(f"{what} {name!r} is a folder; give a file name")
     if mode is not None and not stat.S_ISREG(mode):

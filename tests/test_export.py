@@ -156,3 +156,8 @@ def test_commands_refuse_bad_output_paths_and_write_nothing(
     assert "Traceback" not in captured.err
     assert captured.out == ""
     assert sorted(tmp_path.rglob("*")) == before
+
+
+def test_a_nul_byte_in_an_output_path_is_refused(tmp_path: Path) -> None:
+    with pytest.raises(ValueError, match=r"out '.*' cannot be written: embedded null byte"):
+        check_output_path(str(tmp_path / "a\x00b.npz"), (".npz",), "out")
