@@ -47,8 +47,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     except BrokenPipeError:  # output piped into e.g. `head`, which closed early
         sys.stderr.close()
         return 0
-    except (ValueError, FileNotFoundError) as error:
+    except ValueError as error:
         print(f"loader-model {args.command}: error: {error}", file=sys.stderr)
+        return 2
+    except OSError as error:  # backstop: the file checks should have said it first
+        where = f"{error.filename}: " if error.filename else ""
+        print(
+            f"loader-model {args.command}: error: {where}{error.strerror or error}", file=sys.stderr
+        )
         return 2
 
 

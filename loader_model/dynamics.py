@@ -16,6 +16,7 @@ import numpy as np
 
 import loader_model_generated as generated
 from loader_model.arrays import finite_scalar, finite_vector
+from loader_model.model_parameter_checks import check_model_parameters
 
 __all__ = [
     "COORDINATE_NAMES",
@@ -95,6 +96,34 @@ class LinearModel:
         )
 
 
+#: Plausible magnitudes of the runtime arguments: 10 km of travel, half a turn of pitch, 1 km/s,
+#: 100 MN (a hundred times the weight of the heaviest machine of the class).
+_MAX_POSITION_M = 1e4
+_MAX_ANGLE_RAD = np.pi
+_MAX_RATE = 1e3
+_MAX_FORCE_N = 1e8
+
+
+def _coordinates(p: Any) -> np.ndarray:
+    """p = (x_H, y_H, θ1, θ2), positions within 10 km and angles within half a turn."""
+    p = finite_vector("p", p, 4)
+    limits = np.array([_MAX_POSITION_M, _MAX_POSITION_M, _MAX_ANGLE_RAD, _MAX_ANGLE_RAD])
+    if np.any(np.abs(p) > limits):
+        raise ValueError(
+            f"p = {p.tolist()} is implausible; allowed: |x_H|, |y_H| <= {_MAX_POSITION_M:g} m "
+            f"and |theta_1|, |theta_2| <= pi rad"
+        )
+    return p
+
+
+def _finite(result: np.ndarray, args: list[np.ndarray]) -> np.ndarray:
+    if not np.all(np.isfinite(result)):
+        names = ("p", "pd", "force_N", "road_m", "road_rate_m_s", "disturbance")
+        shown = ", ".join(f"{n}={a.tolist()}" for n, a in zip(names, args, strict=False))
+        raise ValueError(f"the model gives a non-finite result at {shown}")
+    return result
+
+
 def _dense(value: Any) -> np.ndarray:
     return np.asarray(value.full() if hasattr(value, "full") else value, dtype=float)
 
@@ -111,17 +140,37 @@ class LoaderDynamics:
         static equilibrium (and replace given values).
     equilibrium
         Compute the static tyre loads from the static equilibrium.
+    check_ranges
+        Apply the plausibility ranges of the parameter files (default). ``False`` is for
+        analysis models outside the machines' range, e.g. a tyre removed (k = 0) to compare
+        with a tyre that lost contact; the values must still be finite real numbers.
 
     Raises
     ------
     ValueError
-        On a missing, unknown or non-finite parameter, or a mass matrix that is not positive
-        definite at p = 0.
+        On a missing, unknown or non-finite parameter; a value outside the plausible range of
+        the parameter-file field it comes from, coincident points or A not ahead of B
+        (:func:`loader_model.model_parameter_checks.check_model_parameters`); a static axle load
+        that is not compressive; or a mass matrix that is not positive definite at p = 0.
     """
 
-    def __init__(self, parameter_values: Mapping[str, float], *, equilibrium: bool = True) -> None:
+    def __init__(
+        self,
+        parameter_values: Mapping[str, float],
+        *,
+        equilibrium: bool = True,
+        check_ranges: bool = True,
+    ) -> None:
+        if not isinstance(parameter_values, Mapping):
+            raise ValueError(
+                f"parameter_values must be a mapping of parameter name to value; got "
+                f"{type(parameter_values).__name__}"
+            )
+        for flag, value in (("equilibrium", equilibrium), ("check_ranges", check_ranges)):
+            if not isinstance(value, bool):
+                raise ValueError(f"{flag} must be True or False; got {value!r}")
         names = set(PARAMETER_NAMES)
-        unknown = sorted(set(parameter_values) - names)
+        unknown = sorted(set(parameter_values) - names, key=repr)
         if unknown:
             raise ValueError(
                 f"unknown model parameters {unknown}; allowed: {list(PARAMETER_NAMES)}"
@@ -131,6 +180,9 @@ class LoaderDynamics:
         if missing:
             raise ValueError(f"missing model parameters {missing}")
         values = {n: finite_scalar(n, parameter_values.get(n, 0.0)) for n in PARAMETER_NAMES}
+        given = {n: v for n, v in values.items() if n in parameter_values and n not in optional}
+        if check_ranges:
+            check_model_parameters(given)
         vector = np.array([values[n] for n in PARAMETER_NAMES])
         # The generated complete_parameters holds the static equilibrium inside the graph, so a
         # CasADi graph of varied parameters stays at rest the same way (issue 7).
@@ -139,6 +191,10 @@ class LoaderDynamics:
         """Cylinder force F_act0 that holds the boom at p = 0 [N]."""
         if equilibrium:
             vector = _dense(completed).ravel()
+        if equilibrium and check_ranges and values["g"] != 0.0:  # no loads without gravity
+            check_model_parameters(
+                {name: float(vector[PARAMETER_NAMES.index(name)]) for name in _STATIC_LOADS}
+            )
         self.parameters = vector
         """Parameter vector in the order of :data:`PARAMETER_NAMES`."""
         self._check_mass_matrix()
@@ -178,8 +234,7 @@ class LoaderDynamics:
 
     def mass_matrix(self, p: Any) -> np.ndarray:
         """M(p), Eq. 25 (Eq. 32 at p = 0)."""
-        p = finite_vector("p", p, 4)
-        return _dense(generated.function("mass_matrix")(p, self.parameters))
+        return _dense(generated.function("mass_matrix")(_coordinates(p), self.parameters))
 
     def forward_dynamics(
         self,
@@ -198,14 +253,13 @@ class LoaderDynamics:
         ``anchor_m`` = (ξ_A, ξ_B), the slid distance of each tyre's contact point.
         """
         force = self.static_cylinder_force_N if force_N is None else force_N
-        p, pd, force, road, road_rate, disturbance, params = self._arguments(
-            p, pd, force, road_m, road_rate_m_s, disturbance
-        )
-        anchor = finite_vector("anchor_m", anchor_m, 2)
+        args = self._arguments(p, pd, force, road_m, road_rate_m_s, disturbance)
+        p, pd, force, road, road_rate, disturbance, params = args
+        anchor = finite_vector("anchor_m", anchor_m, 2, _MAX_POSITION_M, "m")
         pdd, _ = generated.function("forward_dynamics")(
             p, pd, anchor, force, road, road_rate, disturbance, params
         )
-        return _dense(pdd).ravel()
+        return _finite(_dense(pdd).ravel(), args)
 
     def tyre_contact(
         self,
@@ -218,11 +272,11 @@ class LoaderDynamics:
         """Road forces on the axles ``F_tyre`` = (F_Ax, F_Ay, F_Bx, F_By) [N] (world frame), their
         generalised forces ``Q_tyre`` and the anchor rates ``anchor_rate`` [m/s]."""
         values = generated.function("tyre_contact")(
-            finite_vector("p", p, 4),
-            finite_vector("pd", pd, 4),
-            finite_vector("anchor_m", anchor_m, 2),
-            finite_vector("road_m", road_m, 4),
-            finite_vector("road_rate_m_s", road_rate_m_s, 4),
+            _coordinates(p),
+            finite_vector("pd", pd, 4, _MAX_RATE, "m/s or rad/s"),
+            finite_vector("anchor_m", anchor_m, 2, _MAX_POSITION_M, "m"),
+            finite_vector("road_m", road_m, 4, _MAX_POSITION_M, "m"),
+            finite_vector("road_rate_m_s", road_rate_m_s, 4, _MAX_RATE, "m/s"),
             self.parameters,
         )
         names = ("F_tyre", "Q_tyre", "anchor_rate")
@@ -231,8 +285,8 @@ class LoaderDynamics:
     def specific_forces(self, p: Any, pd: Any, pdd: Any) -> dict[str, np.ndarray]:
         """What chassis-fixed accelerometers at H, N and S read: R(θ1)ᵀ (a + g ŷ) [m/s²]."""
         values = generated.function("specific_forces")(
-            finite_vector("p", p, 4),
-            finite_vector("pd", pd, 4),
+            _coordinates(p),
+            finite_vector("pd", pd, 4, _MAX_RATE, "m/s or rad/s"),
             finite_vector("pdd", pdd, 4),
             self.parameters,
         )
@@ -253,31 +307,32 @@ class LoaderDynamics:
         """
         force = self.static_cylinder_force_N if force_N is None else force_N
         args = self._arguments(p, pd, force, road_m, road_rate_m_s, disturbance)
-        a, b, e, c, d_u, d_w, _ = (_dense(m) for m in generated.function("linearisation")(*args))
+        a, b, e, c, d_u, d_w, _ = (
+            _finite(_dense(m), args) for m in generated.function("linearisation")(*args)
+        )
         return LinearModel(A=a, B=b, E=e, C=c, D_u=d_u, D_w=d_w)
 
     def cylinder_kinematics(self, p: Any, pd: Any = (0.0, 0.0, 0.0, 0.0)) -> dict[str, float]:
         """x_cyl [m], ẋ_cyl [m/s], dx_cyl/dφ [m/rad] (Eq. 35) and γ [rad] (Eq. 15-16)."""
-        p, pd = finite_vector("p", p, 4), finite_vector("pd", pd, 4)
+        p, pd = _coordinates(p), finite_vector("pd", pd, 4, _MAX_RATE, "m/s or rad/s")
         values = generated.function("cylinder_kinematics")(p, pd, self.parameters)
         names = ("x_cyl", "xd_cyl", "dx_cyl_dphi", "gamma")
         return {name: float(value) for name, value in zip(names, values, strict=True)}
 
     def point_positions(self, p: Any) -> dict[str, np.ndarray]:
         """World positions [m] of the points A, B, C, D, E, G, H, N, S."""
-        p = finite_vector("p", p, 4)
-        values = generated.function("point_positions")(p, self.parameters)
+        values = generated.function("point_positions")(_coordinates(p), self.parameters)
         return {f"{k}": _dense(v).ravel() for k, v in zip("ABCDEGHNS", values, strict=True)}
 
     def _arguments(
         self, p: Any, pd: Any, force: Any, road: Any, road_rate: Any, disturbance: Any
     ) -> list[np.ndarray]:
         return [
-            finite_vector("p", p, 4),
-            finite_vector("pd", pd, 4),
-            finite_vector("force_N", force, 1),
-            finite_vector("road_m", road, 4),
-            finite_vector("road_rate_m_s", road_rate, 4),
-            finite_vector("disturbance", disturbance, 3),
+            _coordinates(p),
+            finite_vector("pd", pd, 4, _MAX_RATE, "m/s or rad/s"),
+            finite_vector("force_N", force, 1, _MAX_FORCE_N, "N"),
+            finite_vector("road_m", road, 4, _MAX_POSITION_M, "m"),
+            finite_vector("road_rate_m_s", road_rate, 4, _MAX_RATE, "m/s"),
+            finite_vector("disturbance", disturbance, 3, _MAX_FORCE_N, "N or N m"),
             self.parameters,
         ]

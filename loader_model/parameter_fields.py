@@ -1,8 +1,15 @@
-"""Building blocks of the parameter dataclasses: allowed ranges, unit metadata, sources.
+"""Building blocks of the parameter dataclasses: plausible ranges, unit metadata, sources.
 
 Every leaf field of a parameter dataclass carries metadata: its SI unit string (checked against
 the TOML file, no conversion), its allowed :class:`Range`, its shape (0 for a scalar, n for a
 tuple of n floats) and whether it is an integer count.
+
+The allowed range of a field is the range of *plausible* values for the machines this package is
+for (compact and wheel loaders, backhoes and tractors, about 0.5 t to 50 t), with the reason
+beside it; a hard physical limit (a mass is positive) is kept as an open bound. A value outside
+is refused naming the field, the value, the range and the reason. A new field therefore needs
+only its unit and a :class:`Range` with a reason (``tests/test_parameter_ranges.py`` checks that
+every field has finite bounds and a reason).
 """
 
 from __future__ import annotations
@@ -12,6 +19,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 __all__ = [
+    "COORDINATE",
     "FINITE",
     "NONNEGATIVE",
     "POSITIVE",
@@ -34,18 +42,25 @@ class Range:
         Bounds (infinite for an open end).
     low_open, high_open : bool
         Whether the bound itself is excluded.
+    reason : str
+        Why values outside are implausible (printed with the range in error messages).
     """
 
     low: float = -math.inf
     high: float = math.inf
     low_open: bool = False
     high_open: bool = False
+    reason: str = ""
 
     def contains(self, value: float) -> bool:
         """Return True when the finite ``value`` lies in the interval."""
         above = value > self.low if self.low_open else value >= self.low
         below = value < self.high if self.high_open else value <= self.high
         return above and below
+
+    def describe(self) -> str:
+        """The interval followed by its reason, e.g. ``"[250, 45000] (chassis of ...)"``."""
+        return f"{self} ({self.reason})" if self.reason else str(self)
 
     def __str__(self) -> str:
         if math.isinf(self.low) and math.isinf(self.high):
@@ -65,6 +80,13 @@ FINITE = Range()
 POSITIVE = Range(0.0, low_open=True)
 #: Zero or positive (damping, friction, leakage conductance).
 NONNEGATIVE = Range(0.0)
+#: A coordinate of a point in the chassis frame (m).
+COORDINATE = Range(
+    -10.0,
+    10.0,
+    reason="within 10 m of the chassis centre of gravity: the largest machines of this class "
+    "(50 t wheel loaders) are about 11 m long with the bucket and reach about 6 m high",
+)
 
 
 def si(unit: str, allowed: Range = FINITE, shape: int = 0) -> dict[str, Any]:

@@ -9,7 +9,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from loader_model.parameter_fields import FINITE, NONNEGATIVE, POSITIVE, Range, integer, si
+from loader_model.parameter_fields import Range, integer, si
+
+_DEAD_VOLUME = Range(1e-6, 0.05, reason="hose, tube and port volume per cylinder of 1 ml to 50 l")
 
 __all__ = [
     "AccumulatorParameters",
@@ -42,15 +44,27 @@ class CylinderParameters:
         Stiffness in N/m and damping in N·s/m of the stroke's end stops, per cylinder.
     """
 
-    count: int = field(metadata=integer())
-    piston_diameter: float = field(metadata=si("m", POSITIVE))
-    rod_diameter: float = field(metadata=si("m", POSITIVE))
-    stroke: float = field(metadata=si("m", POSITIVE))
-    retracted_length: float = field(metadata=si("m", POSITIVE))
-    dead_volume_a: float = field(metadata=si("m^3", POSITIVE))
-    dead_volume_b: float = field(metadata=si("m^3", POSITIVE))
-    end_stop_stiffness: float = field(metadata=si("N/m", POSITIVE))
-    end_stop_damping: float = field(metadata=si("N s/m", NONNEGATIVE))
+    count: int = field(
+        metadata=integer(Range(1, 4, reason="one to four lift cylinders in parallel"))
+    )
+    piston_diameter: float = field(
+        metadata=si(
+            "m", Range(0.02, 0.4, reason="bores of 20-400 mm; mobile lift cylinders are 40-250 mm")
+        )
+    )
+    rod_diameter: float = field(metadata=si("m", Range(0.01, 0.3, reason="rods of 10-300 mm")))
+    stroke: float = field(metadata=si("m", Range(0.05, 3.0, reason="strokes of 5 cm to 3 m")))
+    retracted_length: float = field(
+        metadata=si("m", Range(0.2, 5.0, reason="pin-to-pin lengths of 0.2-5 m"))
+    )
+    dead_volume_a: float = field(metadata=si("m^3", _DEAD_VOLUME))
+    dead_volume_b: float = field(metadata=si("m^3", _DEAD_VOLUME))
+    end_stop_stiffness: float = field(
+        metadata=si("N/m", Range(1e6, 1e10, reason="end stops from rubber cushions to steel"))
+    )
+    end_stop_damping: float = field(
+        metadata=si("N s/m", Range(0.0, 1e7, reason="undamped to heavily cushioned end stops"))
+    )
 
     @property
     def piston_area(self) -> float:
@@ -91,13 +105,43 @@ class HydraulicParameters:
         Conductance in m³/(s·Pa) of the relief valve above its setting.
     """
 
-    bulk_modulus: float = field(metadata=si("Pa", POSITIVE))
-    charge_pressure: float = field(metadata=si("Pa", POSITIVE))
-    oil_density: float = field(metadata=si("kg/m^3", POSITIVE))
-    charge_conductance: float = field(metadata=si("m^3/(s Pa)", POSITIVE))
-    check_valve_conductance: float = field(metadata=si("m^3/(s Pa)", POSITIVE))
-    relief_pressure: float = field(metadata=si("Pa", POSITIVE))
-    relief_conductance: float = field(metadata=si("m^3/(s Pa)", POSITIVE))
+    bulk_modulus: float = field(
+        metadata=si(
+            "Pa",
+            Range(
+                100000000.0,
+                3000000000.0,
+                reason="effective bulk modulus of oil with hoses and air (0.1 GPa) to water glycol (3 GPa)",
+            ),
+        )
+    )
+    charge_pressure: float = field(
+        metadata=si(
+            "Pa",
+            Range(500000.0, 5000000.0, reason="charge pumps of closed circuits deliver 5-50 bar"),
+        )
+    )
+    oil_density: float = field(
+        metadata=si("kg/m^3", Range(800.0, 1100.0, reason="mineral oils to water glycol"))
+    )
+    charge_conductance: float = field(
+        metadata=si(
+            "m^3/(s Pa)", Range(1e-11, 1e-6, reason="valves passing 0.06-6000 l/min per bar")
+        )
+    )
+    check_valve_conductance: float = field(
+        metadata=si(
+            "m^3/(s Pa)", Range(1e-11, 1e-6, reason="valves passing 0.06-6000 l/min per bar")
+        )
+    )
+    relief_pressure: float = field(
+        metadata=si("Pa", Range(5e6, 5e7, reason="relief settings of mobile machines, 50-500 bar"))
+    )
+    relief_conductance: float = field(
+        metadata=si(
+            "m^3/(s Pa)", Range(1e-11, 1e-6, reason="valves passing 0.06-6000 l/min per bar")
+        )
+    )
 
 
 @dataclass(frozen=True)
@@ -112,8 +156,22 @@ class LeakageParameters:
         Velocity coefficient k_Lv in m²; identified negative (−5.0e-4 m²), so any finite value.
     """
 
-    k_lp: float = field(metadata=si("m^3/(s Pa)", NONNEGATIVE))
-    k_lv: float = field(metadata=si("m^2", FINITE))
+    k_lp: float = field(
+        metadata=si(
+            "m^3/(s Pa)",
+            Range(0.0, 1e-10, reason="no leakage to 60 l/min at 100 bar, a seal that has failed"),
+        )
+    )
+    k_lv: float = field(
+        metadata=si(
+            "m^2",
+            Range(
+                -0.02,
+                0.02,
+                reason="at most a sixth of the area of the largest bore (0.4 m: 0.126 m^2) either way",
+            ),
+        )
+    )
 
 
 @dataclass(frozen=True)
@@ -134,11 +192,25 @@ class FrictionParameters:
         Viscous coefficient in N·s/m.
     """
 
-    f_s: float = field(metadata=si("N", NONNEGATIVE))
-    tau_s: float = field(metadata=si("s/m", NONNEGATIVE))
-    gamma: float = field(metadata=si("s/m", NONNEGATIVE))
-    f_c: float = field(metadata=si("N/Pa", NONNEGATIVE))
-    f_v: float = field(metadata=si("N s/m", NONNEGATIVE))
+    f_s: float = field(
+        metadata=si(
+            "N", Range(0.0, 200000.0, reason="up to 200 kN, the seal friction of a 400 mm bore")
+        )
+    )
+    tau_s: float = field(
+        metadata=si("s/m", Range(0.0, 1000.0, reason="Stribeck velocities down to 1 mm/s"))
+    )
+    gamma: float = field(
+        metadata=si(
+            "s/m", Range(0.0, 10000.0, reason="tanh(gamma v) switching over 0.1 mm/s or more")
+        )
+    )
+    f_c: float = field(
+        metadata=si("N/Pa", Range(0.0, 0.001, reason="up to 100 N/bar (Table 4: 10.7 N/bar)"))
+    )
+    f_v: float = field(
+        metadata=si("N s/m", Range(0.0, 1000000.0, reason="up to 1 MN s/m (Table 4: 8.13 kN s/m)"))
+    )
 
 
 @dataclass(frozen=True)
@@ -160,11 +232,31 @@ class PumpParameters:
         read as 1.24e-3 m³/(rev·s), a full stroke in about 37 ms (DESIGN.md errata 8).
     """
 
-    max_displacement: float = field(metadata=si("m^3/rev", POSITIVE))
-    shaft_speed: float = field(metadata=si("rev/s", POSITIVE))
-    natural_frequency: float = field(metadata=si("Hz", POSITIVE))
-    damping_ratio: float = field(metadata=si("-", POSITIVE))
-    displacement_rate_limit: float = field(metadata=si("m^3/(rev s)", POSITIVE))
+    max_displacement: float = field(
+        metadata=si(
+            "m^3/rev", Range(5e-06, 0.001, reason="mobile axial piston pumps of 5 to 1000 cm^3/rev")
+        )
+    )
+    shaft_speed: float = field(
+        metadata=si("rev/s", Range(5.0, 60.0, reason="diesel or electric drive at 300-3600 rpm"))
+    )
+    natural_frequency: float = field(
+        metadata=si(
+            "Hz", Range(1.0, 200.0, reason="displacement loops of 1-200 Hz (Table 2: 22.3 Hz)")
+        )
+    )
+    damping_ratio: float = field(
+        metadata=si(
+            "-",
+            Range(0.05, 5.0, reason="a loop that settles: 0.05 to overdamped 5 (Table 2: 0.53)"),
+        )
+    )
+    displacement_rate_limit: float = field(
+        metadata=si(
+            "m^3/(rev s)",
+            Range(1e-05, 0.1, reason="a full stroke of 5-1000 cm^3/rev pumps in 10 ms to 100 s"),
+        )
+    )
 
     @property
     def natural_frequency_rad_s(self) -> float:
@@ -191,13 +283,59 @@ class ControllerParameters:
         rad. The pressure norm depends on the load case (:class:`BucketLoad`).
     """
 
-    k_fb: tuple[float, float, float, float] = field(metadata=si("-", FINITE, shape=4))
-    tau: float = field(metadata=si("rad/s", POSITIVE))
-    k_p: float = field(metadata=si("-", POSITIVE))
-    sample_rate: float = field(metadata=si("Hz", POSITIVE))
-    linear_acceleration_norm: float = field(metadata=si("m/s^2", POSITIVE))
-    angular_acceleration_norm: float = field(metadata=si("rad/s^2", POSITIVE))
-    angle_norm: float = field(metadata=si("rad", POSITIVE))
+    k_fb: tuple[float, float, float, float] = field(
+        metadata=si(
+            "-",
+            Range(
+                -100.0, 100.0, reason="gains on signals normalised to 1; Table 3 gains are below 6"
+            ),
+            shape=4,
+        )
+    )
+    tau: float = field(
+        metadata=si(
+            "rad/s",
+            Range(
+                0.01,
+                1000.0,
+                reason="semi-integrator corner below the 1 kHz sample rate (Table 3: 10 rad/s)",
+            ),
+        )
+    )
+    k_p: float = field(
+        metadata=si(
+            "-",
+            Range(
+                0.0,
+                100.0,
+                low_open=True,
+                reason="a gain on normalised signals is positive (section 3.2: 0.5)",
+            ),
+        )
+    )
+    sample_rate: float = field(
+        metadata=si(
+            "Hz",
+            Range(
+                50.0,
+                100000.0,
+                reason="digital controllers of 50 Hz to 100 kHz (section 3.3: 1 kHz)",
+            ),
+        )
+    )
+    linear_acceleration_norm: float = field(
+        metadata=si("m/s^2", Range(0.1, 1000.0, reason="0.01 g to 100 g (section 3.3: 2 g)"))
+    )
+    angular_acceleration_norm: float = field(
+        metadata=si(
+            "rad/s^2", Range(0.1, 1000.0, reason="0.1-1000 rad/s^2 (section 3.3: 20 rad/s^2)")
+        )
+    )
+    angle_norm: float = field(
+        metadata=si(
+            "rad", Range(0.01, math.pi, reason="0.6 deg to half a turn (section 3.3: 33 deg)")
+        )
+    )
 
 
 @dataclass(frozen=True)
@@ -222,10 +360,25 @@ class AccumulatorParameters:
         Pressure drop in Pa around which the orifice flow turns from laminar to turbulent.
     """
 
-    count: int = field(metadata=integer())
-    precharge_pressure: float = field(metadata=si("Pa", POSITIVE))
-    gas_volume: float = field(metadata=si("m^3", POSITIVE))
-    polytropic_exponent: float = field(metadata=si("-", Range(1.0, 1.7)))
-    orifice_diameter: float = field(metadata=si("m", POSITIVE))
-    discharge_coefficient: float = field(metadata=si("-", Range(0.0, 1.0, low_open=True)))
-    laminar_transition_pressure: float = field(metadata=si("Pa", POSITIVE))
+    count: int = field(metadata=integer(Range(1, 8, reason="one to eight accumulators")))
+    precharge_pressure: float = field(
+        metadata=si("Pa", Range(500000.0, 30000000.0, reason="gas precharges of 5-300 bar"))
+    )
+    gas_volume: float = field(
+        metadata=si("m^3", Range(1e-05, 0.05, reason="accumulators of 0.01-50 l"))
+    )
+    polytropic_exponent: float = field(
+        metadata=si(
+            "-",
+            Range(1.0, 1.7, reason="isothermal (1) to adiabatic nitrogen at high pressure (1.7)"),
+        )
+    )
+    orifice_diameter: float = field(
+        metadata=si("m", Range(0.0005, 0.05, reason="damping orifices of 0.5-50 mm"))
+    )
+    discharge_coefficient: float = field(
+        metadata=si("-", Range(0.1, 1.0, reason="0.1 (long laminar passage) to 1 (ideal nozzle)"))
+    )
+    laminar_transition_pressure: float = field(
+        metadata=si("Pa", Range(1e3, 1e6, reason="laminar-turbulent transition of 0.01-10 bar"))
+    )

@@ -32,8 +32,7 @@ import math
 from dataclasses import dataclass, field
 
 from loader_model.parameter_fields import (
-    NONNEGATIVE,
-    POSITIVE,
+    COORDINATE,
     Range,
     Sourced,
     si,
@@ -73,6 +72,13 @@ __all__ = [
 #: A point ``(x, y)`` in metres in the chassis frame (see the module docstring).
 Point = tuple[float, float]
 
+_TYRE_STIFFNESS = Range(
+    5e4, 3e7, reason="two tyres of one axle, from 25 kN/m (small, soft) to 15 MN/m (50 t loader)"
+)
+_TYRE_DAMPING = Range(
+    0.0, 1e6, reason="undamped (0) to a loss factor of about 0.3 on the stiffest tyres at 1 Hz"
+)
+
 
 @dataclass(frozen=True)
 class Geometry:
@@ -97,14 +103,19 @@ class Geometry:
         Cylinder rod end on the boom (Eq. 15, 16).
     """
 
-    boom_angle: float = field(metadata=si("rad", Range(-math.pi / 2, math.pi / 2)))
-    A: Point = field(metadata=si("m", shape=2))
-    B: Point = field(metadata=si("m", shape=2))
-    C: Point = field(metadata=si("m", shape=2))
-    D: Point = field(metadata=si("m", shape=2))
-    S: Point = field(metadata=si("m", shape=2))
-    N: Point = field(metadata=si("m", shape=2))
-    E: Point = field(metadata=si("m", shape=2))
+    boom_angle: float = field(
+        metadata=si(
+            "rad",
+            Range(-math.pi / 2, math.pi / 2, reason="a boom between straight down and straight up"),
+        )
+    )
+    A: Point = field(metadata=si("m", COORDINATE, shape=2))
+    B: Point = field(metadata=si("m", COORDINATE, shape=2))
+    C: Point = field(metadata=si("m", COORDINATE, shape=2))
+    D: Point = field(metadata=si("m", COORDINATE, shape=2))
+    S: Point = field(metadata=si("m", COORDINATE, shape=2))
+    N: Point = field(metadata=si("m", COORDINATE, shape=2))
+    E: Point = field(metadata=si("m", COORDINATE, shape=2))
 
 
 @dataclass(frozen=True)
@@ -119,8 +130,19 @@ class ChassisParameters:
         J1 about H in kg·m².
     """
 
-    mass: float = field(metadata=si("kg", POSITIVE))
-    inertia: float = field(metadata=si("kg m^2", POSITIVE))
+    mass: float = field(
+        metadata=si("kg", Range(250.0, 45_000.0, reason="chassis of a 0.5 t to 50 t machine"))
+    )
+    inertia: float = field(
+        metadata=si(
+            "kg m^2",
+            Range(
+                20.0,
+                500_000.0,
+                reason="chassis mass 250-45 000 kg with a radius of gyration of 0.3-3.3 m",
+            ),
+        )
+    )
 
 
 @dataclass(frozen=True)
@@ -137,9 +159,27 @@ class BoomParameters:
         Moment of inertia about ``cog`` in kg·m².
     """
 
-    mass: float = field(metadata=si("kg", POSITIVE))
-    cog: Point = field(metadata=si("m", shape=2))
-    inertia: float = field(metadata=si("kg m^2", POSITIVE))
+    mass: float = field(
+        metadata=si(
+            "kg",
+            Range(
+                30.0,
+                15_000.0,
+                reason="boom, attachment and empty bucket of a 0.5 t to 50 t machine",
+            ),
+        )
+    )
+    cog: Point = field(metadata=si("m", COORDINATE, shape=2))
+    inertia: float = field(
+        metadata=si(
+            "kg m^2",
+            Range(
+                1.0,
+                100_000.0,
+                reason="boom mass 30-15 000 kg with a radius of gyration of 0.2-2.6 m",
+            ),
+        )
+    )
 
 
 @dataclass(frozen=True)
@@ -160,10 +200,34 @@ class BucketLoad(Sourced):
         Source or reason of each value by dotted path (see :meth:`source`).
     """
 
-    mass: float = field(metadata=si("kg", POSITIVE))
-    cog: Point = field(metadata=si("m", shape=2))
-    inertia: float = field(metadata=si("kg m^2", POSITIVE))
-    pressure_normalisation: float = field(metadata=si("Pa", POSITIVE))
+    mass: float = field(
+        metadata=si(
+            "kg",
+            Range(
+                0.0,
+                15_000.0,
+                low_open=True,
+                reason="a mass is positive; a 50 t wheel loader carries about 6 m^3 of rock, 12 t",
+            ),
+        )
+    )
+    cog: Point = field(metadata=si("m", COORDINATE, shape=2))
+    inertia: float = field(
+        metadata=si(
+            "kg m^2",
+            Range(
+                0.0,
+                50_000.0,
+                low_open=True,
+                reason="an inertia is positive; 15 t spread over a 4 m bucket is below 50 000 kg m^2",
+            ),
+        )
+    )
+    pressure_normalisation: float = field(
+        metadata=si(
+            "Pa", Range(1e6, 5e7, reason="10-500 bar, working pressures of mobile hydraulics")
+        )
+    )
     sources: tuple[tuple[str, str], ...] = sources_field()
 
 
@@ -179,10 +243,10 @@ class AxleTyre:
         Longitudinal and vertical damping in N·s/m.
     """
 
-    k_x: float = field(metadata=si("N/m", POSITIVE))
-    k_y: float = field(metadata=si("N/m", POSITIVE))
-    c_x: float = field(metadata=si("N s/m", NONNEGATIVE))
-    c_y: float = field(metadata=si("N s/m", NONNEGATIVE))
+    k_x: float = field(metadata=si("N/m", _TYRE_STIFFNESS))
+    k_y: float = field(metadata=si("N/m", _TYRE_STIFFNESS))
+    c_x: float = field(metadata=si("N s/m", _TYRE_DAMPING))
+    c_y: float = field(metadata=si("N s/m", _TYRE_DAMPING))
 
 
 @dataclass(frozen=True)
@@ -206,9 +270,15 @@ class TyreParameters:
 
     front: AxleTyre
     rear: AxleTyre
-    friction_coefficient: float = field(metadata=si("-", POSITIVE))
-    contact_transition: float = field(metadata=si("N", POSITIVE))
-    slip_relaxation_time: float = field(metadata=si("s", POSITIVE))
+    friction_coefficient: float = field(
+        metadata=si("-", Range(0.1, 1.5, reason="tyres on ice (0.1) to dry concrete (up to 1.5)"))
+    )
+    contact_transition: float = field(
+        metadata=si("N", Range(1.0, 1e4, reason="1 N to 10 kN, well below the static axle loads"))
+    )
+    slip_relaxation_time: float = field(
+        metadata=si("s", Range(1e-4, 0.1, reason="0.1-100 ms, faster than a drop's flight"))
+    )
 
 
 @dataclass(frozen=True)
@@ -221,7 +291,16 @@ class EnvironmentParameters:
         Gravitational acceleration g in m/s².
     """
 
-    gravity: float = field(metadata=si("m/s^2", POSITIVE))
+    gravity: float = field(
+        metadata=si(
+            "m/s^2",
+            Range(
+                9.76,
+                9.84,
+                reason="gravity on the Earth's surface: 9.78 at the equator, 9.83 at the poles",
+            ),
+        )
+    )
 
 
 @dataclass(frozen=True)

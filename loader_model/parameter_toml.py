@@ -10,6 +10,10 @@ unknown keys (suggesting the closest valid key), missing keys, the unit string (
 field's SI unit, no conversion), the value type and finiteness. Range and consistency checks are
 done afterwards by :func:`loader_model.parameters.validate`. Floats are written with ``repr``,
 which :mod:`tomllib` reads back bit for bit, so load -> save -> load is exact.
+
+The writer is hand-written on purpose: tomli-w (the usual TOML writer) writes every mapping as a
+``[table]`` section, so each one-line ``{ value, unit, source }`` leaf would become a four-line
+table and the files would lose the layout that makes them readable.
 """
 
 from __future__ import annotations
@@ -80,7 +84,14 @@ def _number(raw: Any, path: str, integer: bool) -> float | int:
         if not isinstance(raw, int):
             raise ValueError(f"{path}: value {raw!r} is not an integer")
         return raw
-    value = float(raw)
+    try:
+        value = float(raw)
+    except OverflowError:
+        shown = str(raw)[:20] + "..."
+        raise ValueError(
+            f"{path}: value {shown} ({len(str(abs(raw)))} digits) is not a finite float; "
+            "allowed: a finite number"
+        ) from None
     if not math.isfinite(value):
         raise ValueError(f"{path}: value {value!r} is not finite; allowed: a finite number")
     return value

@@ -17,14 +17,21 @@ from __future__ import annotations
 
 import difflib
 import functools
-import itertools
 import math
+import os
 import tomllib
 from collections.abc import Mapping, Sequence
 from importlib import resources
 from pathlib import Path
 from typing import Any, TypeVar
 
+from loader_model.files import read_text
+from loader_model.parameter_checks import (
+    COINCIDENCE_TOLERANCE_M,
+    check_combination,
+    check_loader,
+    check_ranges,
+)
 from loader_model.parameter_schema import (
     AccumulatorParameters,
     AxleTyre,
@@ -43,12 +50,13 @@ from loader_model.parameter_schema import (
     PumpParameters,
     TyreParameters,
 )
-from loader_model.parameter_toml import build, dumps, iter_leaves, leaf_metadata, to_raw
+from loader_model.parameter_toml import build, dumps, iter_leaves, to_raw
 
 __all__ = [
     "COINCIDENCE_TOLERANCE_M",
     "LOAD_CASES",
     "MODEL_PARAMETER_NAMES",
+    "PARAMETER_SUFFIXES",
     "AccumulatorParameters",
     "AxleTyre",
     "BoomParameters",
@@ -76,15 +84,14 @@ __all__ = [
     "validate",
 ]
 
-#: Two points closer than this are taken as coincident (degenerate geometry), in m.
-COINCIDENCE_TOLERANCE_M = 1e-3
-
 #: Names of the generated model's numeric parameters (the order belongs to ``derive``).
 MODEL_PARAMETER_NAMES = frozenset(
     "m_1 J_1 m_2 J_2 g A_x A_y B_x B_y C_x C_y D_x D_y S_x S_y N_x N_y E_x E_y G_x G_y "
     "k_Ax k_Ay c_Ax c_Ay k_Bx k_By c_Bx c_By mu_road F_transition tau_slip".split()
 )
 
+#: Suffixes of parameter files.
+PARAMETER_SUFFIXES = (".toml",)
 _LOAD_CASES = {"empty": "load_empty.toml", "full": "load_full.toml"}
 #: Names of the shipped bucket-load cases (paper section 5.3: 340 kg and 770 kg).
 LOAD_CASES: tuple[str, ...] = tuple(_LOAD_CASES)
@@ -101,94 +108,23 @@ _HEADER_FORMAT = (
 P = TypeVar("P", LoaderParameters, BucketLoad)
 
 
-def _get(obj: Any, path: str) -> Any:
-    for name in path.split("."):
-        obj = getattr(obj, name)
-    return obj
-
-
-def _distance(p: Point, q: Point) -> float:
-    return math.hypot(p[0] - q[0], p[1] - q[1])
-
-
-def _check_ranges(params: LoaderParameters | BucketLoad) -> None:
-    for path, cls, name in iter_leaves(type(params)):
-        meta = leaf_metadata(cls, name)
-        value = _get(params, path)
-        for item in value if isinstance(value, tuple) else (value,):
-            if not math.isfinite(item):
-                raise ValueError(f"{path} = {value!r} is not finite; allowed: a finite number")
-            if not meta["allowed"].contains(item):
-                raise ValueError(
-                    f"{path} = {value!r} {meta['unit']} is out of range; allowed: {meta['allowed']}"
-                )
-
-
-def _check_distinct(points: Mapping[str, Point]) -> None:
-    """Raise if two of the named points coincide (degenerate geometry)."""
-    for (name_p, p), (name_q, q) in itertools.combinations(points.items(), 2):
-        distance = _distance(p, q)
-        if distance < COINCIDENCE_TOLERANCE_M:
-            raise ValueError(
-                f"degenerate geometry: {name_p} = {p} and {name_q} = {q} coincide "
-                f"(distance {distance:g} m; allowed: >= {COINCIDENCE_TOLERANCE_M:g} m)"
-            )
-
-
-def _check_hydraulics(params: LoaderParameters) -> None:
-    """Pressures that must be ordered: charge and precharge below the relief setting."""
-    relief = params.hydraulics.relief_pressure
-    for path, value in (
-        ("hydraulics.charge_pressure", params.hydraulics.charge_pressure),
-        ("accumulator.precharge_pressure", params.accumulator.precharge_pressure),
-    ):
-        if value >= relief:
-            raise ValueError(
-                f"{path} = {value!r} Pa must be below hydraulics.relief_pressure = {relief!r} Pa; "
-                f"allowed: < {relief:g} Pa"
-            )
-
-
-def _check_loader(params: LoaderParameters) -> None:
-    _check_hydraulics(params)
-    cyl, geo = params.cylinders, params.geometry
-    if cyl.rod_diameter >= cyl.piston_diameter:
-        raise ValueError(
-            f"cylinders.rod_diameter = {cyl.rod_diameter!r} m must be smaller than "
-            f"cylinders.piston_diameter = {cyl.piston_diameter!r} m"
-        )
-    names = ("A", "B", "C", "D", "E")
-    points = {f"geometry.{n}": getattr(geo, n) for n in names} | {"boom.cog": params.boom.cog}
-    _check_distinct(points)
-    if geo.A[0] <= geo.B[0]:
-        raise ValueError(
-            f"geometry.A = {geo.A} must be ahead of geometry.B = {geo.B}; allowed: A_x > B_x "
-            "(A is the front axle)"
-        )
-    length = _distance(geo.E, geo.C)
-    low, high = cyl.retracted_length, cyl.retracted_length + cyl.stroke
-    if not low <= length <= high:
-        raise ValueError(
-            f"geometry.E: cylinder length |E - C| = {length:.6g} m at the operating point is "
-            f"outside [{low:g}, {high:g}] m (cylinders.retracted_length, + cylinders.stroke)"
-        )
-
-
 def validate(params: P) -> P:
     """Check ranges and consistency of a parameter set; return it unchanged.
 
     Raises
     ------
     ValueError
-        Naming the field by dotted path (``tyres.front.k_y``), the value and the allowed range:
-        non-finite values; non-positive masses, inertias, stiffnesses, bulk modulus, volumes,
-        diameters, lengths; negative damping or friction; rod not thinner than piston; coincident
-        points among A, B, C, D, E and the boom centre of gravity; A not ahead of B; cylinder
-        length |E − C| outside [retracted length, retracted length + stroke].
+        Naming the field by dotted path (``tyres.front.k_y``), the value, the allowed range and
+        its reason: a value outside the plausible range of its field
+        (:mod:`loader_model.parameter_fields`), or a loader that is inconsistent
+        (:func:`loader_model.parameter_checks.check_loader`: rod too thick, barrel shorter than
+        the stroke, coincident points, A not ahead of B, cylinder on or beyond an end stop).
+        A loader with a bucket load is checked further by
+        :func:`loader_model.parameter_checks.check_combination`.
     """
-    _check_ranges(params)
+    check_ranges(params)
     if isinstance(params, LoaderParameters):
-        _check_loader(params)
+        check_loader(params)
     return params
 
 
@@ -200,20 +136,35 @@ def _parse(cls: type[P], text: str, origin: str) -> P:
 
 
 def load_loader(path: str | Path) -> LoaderParameters:
-    """Read and validate a loader parameter file (see :func:`save` for the layout)."""
-    return _parse(LoaderParameters, Path(path).read_text(encoding="utf-8"), str(path))
+    """Read and validate a loader parameter file (see :func:`save` for the layout).
+
+    The file must be a readable regular file of UTF-8 text, with or without a byte-order mark
+    (:func:`loader_model.files.read_text`); every error names the file.
+    """
+    return _parse(LoaderParameters, read_text(path, "loader parameter file"), str(path))
 
 
 def load_bucket_load(path: str | Path) -> BucketLoad:
-    """Read and validate a bucket-load file (one load case)."""
-    return _parse(BucketLoad, Path(path).read_text(encoding="utf-8"), str(path))
+    """Read and validate a bucket-load file (one load case); see :func:`load_loader`."""
+    return _parse(BucketLoad, read_text(path, "bucket load file"), str(path))
 
 
 def save(params: LoaderParameters | BucketLoad, path: str | Path) -> None:
     """Write a parameter set as TOML; :func:`load_loader` / :func:`load_bucket_load` read it
-    back equal (floats are written with ``repr``)."""
-    header = _HEADERS[type(params)] + _HEADER_FORMAT
-    Path(path).write_text(dumps(to_raw(params), header), encoding="utf-8", newline="\n")
+    back equal (floats are written with ``repr``).
+
+    The path must end in ``.toml``; the file is written atomically with the user's umask
+    permissions (:func:`loader_model.export.write_atomically`).
+    """
+    from loader_model.export import write_atomically
+
+    text = dumps(to_raw(params), _HEADERS[type(params)] + _HEADER_FORMAT)
+    write_atomically(
+        path,
+        lambda temporary: temporary.write_text(text, encoding="utf-8", newline="\n"),
+        PARAMETER_SUFFIXES,
+        "parameter file",
+    )
 
 
 def replace(params: P, updates: Mapping[str, Any], source: str | None = None) -> P:
@@ -284,7 +235,9 @@ def combine_bodies(
     return mass, (gx, gy), inertia
 
 
-def model_parameter_values(loader: LoaderParameters, load: BucketLoad) -> dict[str, float]:
+def model_parameter_values(
+    loader: LoaderParameters, load: BucketLoad, *, check: bool = True
+) -> dict[str, float]:
     """Numeric values of the generated model's parameters, keyed by name.
 
     Body 1 is the chassis (m_1, J_1 about H); body 2 is the boom with the bucket load (m_2, J_2
@@ -296,14 +249,17 @@ def model_parameter_values(loader: LoaderParameters, load: BucketLoad) -> dict[s
     Raises
     ------
     ValueError
-        If the combined centre of gravity G coincides with A, B, C, D or E.
+        If ``check`` and the loader and the load are inconsistent at the static equilibrium (see
+        :func:`loader_model.parameter_checks.check_combination`, which itself evaluates the
+        equilibrium with ``check=False``).
     """
+    if check:
+        check_combination(loader, load)
     boom, geo = loader.boom, loader.geometry
     m_2, cog, j_2 = combine_bodies(
         (boom.mass, load.mass), (boom.cog, load.cog), (boom.inertia, load.inertia)
     )
     points = {name: getattr(geo, name) for name in ("A", "B", "C", "D", "S", "N", "E")}
-    _check_distinct({f"geometry.{n}": points[n] for n in "ABCDE"} | {"combined G": cog})
     values = {"m_1": loader.chassis.mass, "J_1": loader.chassis.inertia, "m_2": m_2, "J_2": j_2}
     values["g"] = loader.environment.gravity
     for name, (x, y) in (points | {"G": cog}).items():
@@ -327,17 +283,25 @@ def resolve_loader_and_load(
     """
     if loader is None:
         loader = default_loader()
-    elif not isinstance(loader, LoaderParameters):
-        if not Path(loader).is_file():
-            raise ValueError(f"loader parameter file {str(loader)!r} does not exist")
+    elif isinstance(loader, str | os.PathLike):
         loader = load_loader(loader)
+    elif not isinstance(loader, LoaderParameters):
+        raise ValueError(
+            f"loader must be a LoaderParameters, a path to its TOML file or None; got {loader!r}"
+        )
     if isinstance(load, str) and load in LOAD_CASES:
         load = bucket_load(load)
-    elif not isinstance(load, BucketLoad):
-        if not Path(load).is_file():
+    elif isinstance(load, str | os.PathLike):
+        if not os.path.lexists(load):
             raise ValueError(
-                f"load {str(load)!r} is neither a load case {list(LOAD_CASES)} "
+                f"load {os.fspath(load)!r} is neither a load case {list(LOAD_CASES)} "
                 "nor an existing TOML file"
             )
         load = load_bucket_load(load)
+    elif not isinstance(load, BucketLoad):
+        raise ValueError(
+            f"load must be a BucketLoad, a path to its TOML file or one of {list(LOAD_CASES)}; "
+            f"got {load!r}"
+        )
+    check_combination(loader, load)
     return loader, load

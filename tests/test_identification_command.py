@@ -40,12 +40,12 @@ def test_friction_update_out_of_range_is_refused_and_writes_nothing(
     data: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     # Table 4 is not recovered from plant records (test_identification_recovery): on this short
-    # record the fit gives f_C < 0, which the parameter file's range check refuses.
+    # record the fit gives f_s = 5.1 MN and f_C < 0, which the parameter file's ranges refuse.
     update, plot = tmp_path / "loader.toml", tmp_path / "fit.png"
     argv = ["identify", "friction", str(data), "--update", str(update), "--plot", str(plot)]
     assert main(argv) == 2
     err = capsys.readouterr().err
-    assert "friction.f_c" in err and "out of range" in err
+    assert "friction.f_s = " in err and "out of range" in err
     assert "Traceback" not in err
     assert list(tmp_path.iterdir()) == []
 

@@ -118,7 +118,7 @@ def test_cli_main_runs_the_command_and_maps_errors_to_exit_2(
     bad.write_text("time,z\n0,1\n0.004,nan\n", encoding="utf-8")
     plot = tmp_path / "plot.png"
     assert cli.main(["iso2631", str(bad), "--plot-weightings", str(plot)]) == 2
-    assert "column 'z' must be finite; got nan in data row 2" in capsys.readouterr().err
+    assert "column 'z' must be finite; got nan on line 3" in capsys.readouterr().err
     assert not plot.exists()  # a failed command writes no partial output
 
 
@@ -127,15 +127,24 @@ def test_cli_main_runs_the_command_and_maps_errors_to_exit_2(
     [
         ([], r"give DATA.csv and/or --plot-weightings FILE.png; got neither"),
         (["{csv}", "--k-factor", "z=big"], r"--k-factor z: K must be a number; got 'big'"),
-        (["{csv}", "--exposure-hours", "0"], r"--exposure-hours must be > 0; got 0.0"),
+        (["{csv}", "--exposure-hours", "0"], r"--exposure-hours must be in \(0, 24\] .*; got 0.0"),
+        (["{csv}", "--exposure-hours", "1e300"], r"--exposure-hours must be in \(0, 24\]"),
+        (["{csv}", "--exposure-hours", "nan"], r"--exposure-hours must be in \(0, 24\]"),
+        (["{csv}", "--weighting", "roll=We"], r"weightings\['roll'\]: axis 'roll' is not in the"),
+        (["{csv}", "--k-factor", "yaw=1"], r"k_factors\['yaw'\]: axis 'yaw' is not in the record"),
+        (["{csv}", "--k-factor", "z=1e300"], r"k_factors\['z'\] must be a number in \[0, 2\]"),
+        (["{csv}", "--k-factor", "z=1", "--k-factor", "z=2"], r"--k-factor z= is given more"),
         (["{csv}", "--weighting", "z=Wb"], r"weighting must be one of .*; got 'Wb'"),
         (["{csv}", "--weighting", "heave=Wk"], r"weightings axis must be one of .*; got 'heave'"),
         (["{csv}", "--integration-time", "100"], r"integration_time_s must span 1 to 2000 samples"),
         (
             ["--plot-weightings", "{dir}/w.jpg"],
-            r"plot path must end in one of \('.png', '.pdf', '.svg'\)",
+            r"has suffix '\.jpg'; allowed: \['\.png', '\.pdf', '\.svg'\]",
         ),
-        (["--plot-weightings", "{dir}/missing/w.png"], r"plot path folder does not exist: "),
+        (
+            ["--plot-weightings", "{dir}/missing/w.png"],
+            r"output folder '.*missing' of --plot-weightings '.*w\.png' does not exist",
+        ),
     ],
 )
 def test_bad_invocations_raise_clear_errors(

@@ -110,7 +110,8 @@ def test_health_assessment_uses_the_worst_axis_with_health_k_factors() -> None:
         * (4 * 3600.0 / 20.0) ** 0.25
     )
     assert assessment.vdv_m_s175 == pytest.approx(expected_vdv, rel=1e-12)
-    only_pitch = VibrationRecord(time_s=np.arange(1000) / RATE_HZ, axes={"pitch": np.zeros(1000)})
+    pitch = np.sin(2 * np.pi * 2.0 * np.arange(1000) / RATE_HZ)
+    only_pitch = VibrationRecord(time_s=np.arange(1000) / RATE_HZ, axes={"pitch": pitch})
     assert health_assessment(evaluate_record(only_pitch)) is None
 
 
@@ -124,11 +125,12 @@ def test_table_lists_axes_total_and_directive_values() -> None:
     assert "A(8) = " in text and "Directive 2002/44/EC" in text
 
 
-def test_zero_axis_has_undefined_crest_factor() -> None:
-    record = VibrationRecord(time_s=np.arange(1000) / RATE_HZ, axes={"y": np.zeros(1000)})
-    (y,) = evaluate_record(record).axes
-    assert y.weighted_rms == 0.0
-    assert math.isnan(y.crest_factor)
+@pytest.mark.parametrize("level", [0.0, 9.81])
+def test_axis_without_vibration_is_refused(level: float) -> None:
+    # all-zero (dead sensor) or constant (gravity only): a_w = 0 and no crest factor
+    record = VibrationRecord(time_s=np.arange(1000) / RATE_HZ, axes={"y": np.full(1000, level)})
+    with pytest.raises(ValueError, match=r"axis 'y' carries no vibration \(weighted r\.m\.s\. 0"):
+        evaluate_record(record)
 
 
 def test_bad_records_are_refused() -> None:
@@ -169,7 +171,7 @@ def test_bad_evaluation_options_are_refused() -> None:
     ):
         evaluate_record(record, weightings={"heave": "Wk"})
     with pytest.raises(
-        ValueError, match=r"k_factors\['pitch'\] must be a finite number >= 0; got -0.4"
+        ValueError, match=r"k_factors\['pitch'\] must be a number in \[0, 2\] .*; got -0.4"
     ):
         evaluate_record(record, k_factors={"pitch": -0.4})
     with pytest.raises(
@@ -198,10 +200,10 @@ def test_bad_evaluation_options_are_refused() -> None:
         (
             "time,z",
             ["0,1", "0.01,nan", "0.02,1"],
-            r"column 'z' must be finite; got nan in data row 2",
+            r"column 'z' must be finite; got nan on line 3",
         ),
-        ("time,z", ["0,1", "0.01,abc"], r"could not read the data rows as numbers: .*abc"),
-        ("time,x,z", ["0,1", "0.01,1"], r"rows have 2 values but the header has 3 columns"),
+        ("time,z", ["0,1", "0.01,abc"], r"line 3, column 'z': 'abc' is not a number"),
+        ("time,x,z", ["0,1", "0.01,1"], r"line 2 has 2 values but the header has 3 columns"),
         ("time,z", ["0,1", "0.01,1", "0.05,1"], r"time_s must be uniformly sampled"),
     ],
 )
@@ -220,3 +222,25 @@ def test_csv_comments_and_blank_lines_are_skipped(tmp_path: Path) -> None:
     assert record.sample_rate_hz == pytest.approx(2.0, rel=1e-12)
     with pytest.raises(ValueError, match=r"no header row; expected columns 'time' and some of"):
         read_vibration_csv(write_csv(tmp_path / "e.csv", "# only a comment", []))
+
+
+@pytest.mark.parametrize(
+    ("axes", "message"),
+    [
+        ({"z": ["1"] * 10}, r"axis 'z' must be a 1-D array of real numbers; got \['1', '1'"),
+        ({"z": [True] * 10}, r"axis 'z' must be a 1-D array of real numbers, not booleans"),
+        ({"z": np.ones(10) + 1j}, r"axis 'z' must be a 1-D array of real numbers; got complex"),
+        ({"z": np.full(10, 1e200)}, r"axis 'z' = 1e\+200 m/s² at index 0 is implausible"),
+    ],
+)
+def test_record_api_refuses_what_the_csv_reader_refuses(axes: dict, message: str) -> None:
+    with pytest.raises(ValueError, match=message):
+        VibrationRecord(time_s=np.arange(10) / 100.0, axes=axes)
+
+
+@pytest.mark.parametrize("rate", [True, "200", 10**400])
+def test_sample_rate_must_be_a_real_number(rate: object) -> None:
+    from loader_model.iso2631 import weight_acceleration
+
+    with pytest.raises(ValueError, match=r"sample_rate_hz must be a positive number in Hz"):
+        weight_acceleration(np.zeros(4000), rate, "Wk")  # type: ignore[arg-type]

@@ -146,17 +146,36 @@ NON_POSITIVE = [
 @pytest.mark.parametrize("path", NON_POSITIVE)
 @pytest.mark.parametrize("value", [0.0, -1.0])
 def test_non_positive_values_are_rejected(tmp_path: Path, path: str, value: float) -> None:
-    message = rf"{path.replace('.', '[.]')} = {value!r} .* is out of range; allowed: > 0"
+    # every field's plausible range starts above zero here, and the message carries its reason
+    message = rf"{path.replace('.', '[.]')} = {value!r} .* is out of range; allowed: \[[0-9.e+-]+, "
+    message += r"[0-9.e+-]+\] \(.+\)$"
     with pytest.raises(ValueError, match=message):
         load_loader(write(tmp_path, LOADER, set_value(path, value)))
 
 
 RANGES = [
-    ("tyres.front.c_y", -1.0, r"tyres\.front\.c_y = -1\.0 N s/m is out of range; allowed: >= 0"),
-    ("tyres.rear.c_x", -1e-9, r"tyres\.rear\.c_x = -1e-09 N s/m .*allowed: >= 0"),
-    ("friction.f_v", -5.0, r"friction\.f_v = -5\.0 N s/m .*allowed: >= 0"),
-    ("cylinders.count", 0, r"cylinders\.count = 0 - is out of range; allowed: >= 1"),
-    ("accumulator.discharge_coefficient", 1.5, r"discharge_coefficient = 1\.5 .*\(0, 1\]"),
+    (
+        "tyres.front.c_y",
+        -1.0,
+        r"tyres\.front\.c_y = -1\.0 N s/m is out of range; allowed: \[0, 1e\+06\]",
+    ),
+    (
+        "tyres.rear.c_x",
+        -1e-9,
+        r"tyres\.rear\.c_x = -1e-09 N s/m .*allowed: \[0, 1e\+06\] \(undamped",
+    ),
+    ("friction.f_v", -5.0, r"friction\.f_v = -5\.0 N s/m .*allowed: \[0, 1e\+06\]"),
+    ("cylinders.count", 0, r"cylinders\.count = 0 - is out of range; allowed: \[1, 4\] \(one to"),
+    ("accumulator.discharge_coefficient", 1.5, r"discharge_coefficient = 1\.5 .*\[0\.1, 1\]"),
+    ("chassis.mass", 1e-300, r"chassis\.mass = 1e-300 kg .*\[250, 45000\] \(chassis of a 0\.5 t"),
+    ("tyres.front.k_y", 1e-300, r"tyres\.front\.k_y = 1e-300 N/m .*\[50000, 3e\+07\]"),
+    ("geometry.C", [1e30, 0.0], r"geometry\.C = \(1e\+30, 0\.0\) m .*\[-10, 10\] \(within 10 m"),
+    ("controller.k_fb", [1e30, 0, 0, 0], r"controller\.k_fb = \(1e\+30, 0\.0, 0\.0, 0\.0\)"),
+    (
+        "cylinders.count",
+        10**400,
+        r"cylinders\.count = 10{19}\.\.\. \(401 digits\) - is out of range; allowed: \[1, 4\]",
+    ),
     ("accumulator.polytropic_exponent", 0.9, r"polytropic_exponent = 0\.9 .*\[1, 1\.7\]"),
     ("geometry.boom_angle", 2.0, r"geometry\.boom_angle = 2\.0 rad .*\[-1\.5708, 1\.5708\]"),
 ]
@@ -175,9 +194,16 @@ def test_negative_leakage_velocity_coefficient_is_allowed(tmp_path: Path) -> Non
 
 
 def test_rod_not_smaller_than_piston(tmp_path: Path) -> None:
-    message = r"cylinders\.rod_diameter = 0\.065 m must be smaller than cylinders\.piston_diam"
+    message = r"cylinders\.rod_diameter = 0\.065 m must be at most 0\.9 x cylinders\.piston_d"
     with pytest.raises(ValueError, match=message):
         load_loader(write(tmp_path, LOADER, set_value("cylinders.rod_diameter", 0.065)))
+
+
+def test_huge_integer_as_a_float_value(tmp_path: Path) -> None:
+    with pytest.raises(
+        ValueError, match=r"chassis\.mass: value 10{19}\.\.\. \(401 digits\) is not"
+    ):
+        load_loader(write(tmp_path, LOADER, set_value("chassis.mass", 10**400)))
 
 
 COINCIDENT = [
@@ -202,10 +228,20 @@ def test_front_axle_must_be_ahead_of_rear_axle(tmp_path: Path) -> None:
 @pytest.mark.parametrize(
     ("edits", "interval"),
     [
-        ((set_value("cylinders.retracted_length", 0.8),), r"\[0\.8, 1\.25\]"),
+        ((set_value("cylinders.retracted_length", 0.8),), r"\[0\.801, 1\.249\]"),
         (
             (set_value("cylinders.retracted_length", 0.5), set_value("cylinders.stroke", 0.15)),
-            r"\[0\.5, 0\.65\]",
+            r"\[0\.501, 0\.649\]",
+        ),
+        # exactly at full stroke (|E - C| = retracted + stroke) is on the end stop: refused
+        (
+            (
+                set_value("cylinders.stroke", 0.1),
+                set_value(
+                    "cylinders.retracted_length", math.dist((-0.24, 0.63), (-0.67, 0.08)) - 0.1
+                ),
+            ),
+            r"\[0\.59914, 0\.69714\] m",
         ),
     ],
 )
@@ -219,8 +255,9 @@ BUCKET = [
     (rename("cog", "cg"), r"cg: unknown key; did you mean 'cog'\?"),
     (delete("pressure_normalisation"), r"pressure_normalisation: missing key"),
     (set_key("pressure_normalisation", "unit", "bar"), r"the allowed unit is 'Pa'"),
-    (set_value("mass", 0.0), r"mass = 0\.0 kg is out of range; allowed: > 0"),
-    (set_value("inertia", -2.0), r"inertia = -2\.0 kg m\^2 is out of range; allowed: > 0"),
+    (set_value("mass", 0.0), r"mass = 0\.0 kg is out of range; allowed: \(0, 15000\] \(a mass is"),
+    (set_value("mass", 1e6), r"mass = 1000000\.0 kg is out of range; allowed: \(0, 15000\]"),
+    (set_value("inertia", -2.0), r"inertia = -2\.0 kg m\^2 is out of range; allowed: \(0, 50000\]"),
     (set_value("cog", [math.nan, 0.0]), r"cog\[0\]: value nan is not finite"),
 ]
 
@@ -255,5 +292,8 @@ def test_combined_centre_of_gravity_must_not_coincide_with_a_point() -> None:
     bx, by = loader.boom.cog
     cog = (((m_b + m_l) * ex - m_b * bx) / m_l, ((m_b + m_l) * ey - m_b * by) / m_l)
     on_e = replace(load, {"cog": cog})
-    with pytest.raises(ValueError, match=r"geometry\.E = .* and combined G = .* coincide"):
+    with pytest.raises(
+        ValueError,
+        match=r"geometry\.E = .* and combined G of boom\.cog and load\.cog = .* coincide",
+    ):
         model_parameter_values(loader, on_e)

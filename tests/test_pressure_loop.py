@@ -82,5 +82,5 @@ def test_hydraulics_command_prints_and_plots(tmp_path, capsys) -> None:
 
 def test_hydraulics_command_refuses_a_bad_plot_name(tmp_path, capsys) -> None:
     assert main(["hydraulics", "--plot", str(tmp_path / "loop.pdf")]) == 2
-    assert "allowed: a file name ending in .png" in capsys.readouterr().err
+    assert "has suffix '.pdf'; allowed: ['.png']" in capsys.readouterr().err
     assert list(tmp_path.iterdir()) == []

@@ -21,13 +21,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from loader_model.export import write_atomically
+    from loader_model.export import check_output_path
     from loader_model.modal import modal_analysis
     from loader_model.modal_report import format_modes
-    from loader_model.parameters import resolve_loader_and_load, save
+    from loader_model.parameters import PARAMETER_SUFFIXES, resolve_loader_and_load, save
     from loader_model.table1_calibration import FREE_PARAMETERS, calibrate_to_table_1
     from loader_model.undamped import undamped_matrices
 
+    if args.output is not None:  # refuse a bad output path before the long fit
+        check_output_path(args.output, PARAMETER_SUFFIXES, "--output")
     loader, load = resolve_loader_and_load(args.params, args.load)
     result, calibrated = calibrate_to_table_1(loader, load)
     print(f"Calibration to Table 1 ({result.n_evaluations} model evaluations)")
@@ -48,7 +50,7 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(
             "the calibration misses a target (1 % frequency, MAC 0.99); nothing written"
         )
-    if args.output:
-        write_atomically(args.output, lambda path: save(calibrated, path))
+    if args.output is not None:
+        save(calibrated, args.output)
         print(f"\nwrote {args.output}")
     return 0

@@ -4,7 +4,6 @@ section 3.2 beside Eq. 43; writes a Bode overlay (PNG)."""
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 
 from loader_model.commands.common import add_model_arguments
 
@@ -31,11 +30,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Print the hydraulics report and write the figure atomically."""
-    from loader_model.export import write_atomically
+    from loader_model.export import check_output_path, write_atomically
     from loader_model.plant.plant_report import hydraulics_report, plot_pressure_loop
 
-    if not Path(args.plot).suffix.lower() == ".png":
-        raise ValueError(f"--plot {args.plot!r}: allowed: a file name ending in .png")
+    check_output_path(args.plot, (".png",), "plot file")  # before any work
     if not args.highpass > 0:
         raise ValueError(f"--highpass {args.highpass!r}: allowed: a number > 0 (rad/s)")
     report = hydraulics_report(args.params, args.load, highpass_rad_s=args.highpass)
@@ -64,6 +62,11 @@ def run(args: argparse.Namespace) -> int:
         + ", ".join(f"{z:.3g}" for z in reference.reference_zeros)
     )
     title = f"Pressure loop of the detailed plant and Eq. 43 (load {args.load})"
-    write_atomically(args.plot, lambda temporary: plot_pressure_loop(report, temporary, title))
+    write_atomically(
+        args.plot,
+        lambda temporary: plot_pressure_loop(report, temporary, title),
+        (".png",),
+        "plot file",
+    )
     print(f"\nwrote {args.plot}")
     return 0

@@ -116,7 +116,6 @@ def _check_outputs(args: argparse.Namespace) -> None:
 
 
 def _fit(args: argparse.Namespace) -> int:
-    from loader_model.export import write_atomically
     from loader_model.identification import (
         identify_friction,
         identify_leakage,
@@ -161,7 +160,7 @@ def _fit(args: argparse.Namespace) -> int:
     if args.plot is not None:
         plot(args.plot)
     if updated is not None:
-        write_atomically(args.update, lambda temporary: save(updated, temporary))
+        save(updated, args.update)
     print(header)
     print(text)
     if args.plot is not None:

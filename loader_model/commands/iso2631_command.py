@@ -78,6 +78,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
 
 
+def _once(option: str, pairs: list[tuple[str, str]]) -> dict[str, str]:
+    axes = [axis for axis, _ in pairs]
+    for axis in axes:
+        if axes.count(axis) > 1:
+            raise ValueError(f"{option} {axis}= is given more than once")
+    return dict(pairs)
+
+
 def _k_factors(pairs: list[tuple[str, str]]) -> dict[str, float]:
     factors = {}
     for axis, text in pairs:
@@ -85,11 +93,13 @@ def _k_factors(pairs: list[tuple[str, str]]) -> dict[str, float]:
             factors[axis] = float(text)
         except ValueError:
             raise ValueError(f"--k-factor {axis}: K must be a number; got {text!r}") from None
+
     return factors
 
 
 def run(args: argparse.Namespace) -> int:
     """Evaluate ``args.data`` and print the table; write the plot if asked. Returns 0."""
+    from loader_model.export import check_output_path
     from loader_model.iso2631 import (
         evaluate_record,
         format_evaluation,
@@ -97,21 +107,29 @@ def run(args: argparse.Namespace) -> int:
         plot_weightings,
         read_vibration_csv,
     )
+    from loader_model.iso2631.plot import PLOT_SUFFIXES
 
+    if args.plot_weightings is not None:
+        check_output_path(args.plot_weightings, PLOT_SUFFIXES, "--plot-weightings")
     if args.data is None and args.plot_weightings is None:
         raise ValueError("give DATA.csv and/or --plot-weightings FILE.png; got neither")
-    if args.exposure_hours <= 0.0 or args.exposure_hours != args.exposure_hours:
-        raise ValueError(f"--exposure-hours must be > 0; got {args.exposure_hours!r}")
+    if not 0.0 < args.exposure_hours <= 24.0:
+        raise ValueError(
+            f"--exposure-hours must be in (0, 24] (a daily exposure); got {args.exposure_hours!r}"
+        )
     report = None
     if args.data is not None:
         record = read_vibration_csv(args.data)
-        evaluation = evaluate_record(
-            record,
-            weightings=dict(args.weighting),
-            k_factors=_k_factors(args.k_factor),
-            integration_time_s=args.integration_time,
-            running_rms_method=args.running_rms,
-        )
+        try:
+            evaluation = evaluate_record(
+                record,
+                weightings=_once("--weighting", args.weighting),
+                k_factors=_k_factors(list(_once("--k-factor", args.k_factor).items())),
+                integration_time_s=args.integration_time,
+                running_rms_method=args.running_rms,
+            )
+        except ValueError as error:
+            raise ValueError(f"{args.data}: {error}") from None
         assessment = health_assessment(evaluation, args.exposure_hours * 3600.0)
         report = format_evaluation(evaluation, assessment, title=f"{args.data}:")
     if args.plot_weightings is not None:

@@ -19,11 +19,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    from loader_model.export import ARRAY_SUFFIXES, check_output_path
     from loader_model.report import model_summary
 
+    if args.export is not None:  # refuse a bad path (also '') before any work
+        check_output_path(args.export, ARRAY_SUFFIXES, "--export")
     model = model_from_arguments(args)
     print(model_summary(model))
-    if args.export:
+    if args.export is not None:
         path = model.linearise().save(args.export)
         print(f"\nwrote the linear model to {path}")
     return 0

@@ -252,4 +252,4 @@ def write_measurement_csv(
             stream.write(",".join(labels) + "\n")
             stream.writelines(",".join(map(repr, row)) + "\n" for row in data.tolist())
 
-    return write_atomically(path, write)
+    return write_atomically(path, write, (".csv",), "measurement file")

@@ -136,7 +136,11 @@ def _figure() -> tuple[Any, Any, Any]:
 
 
 def _save(figure: Any, path: str | Path) -> Path:
-    return write_atomically(path, lambda temporary: figure.savefig(temporary, dpi=110))
+    from loader_model.iso2631.plot import PLOT_SUFFIXES
+
+    return write_atomically(
+        path, lambda temporary: figure.savefig(temporary, dpi=110), PLOT_SUFFIXES, "plot file"
+    )
 
 
 def plot_friction_fit(result: FrictionResult, path: str | Path, title: str = "") -> Path:

@@ -6,6 +6,8 @@ import math
 
 import numpy as np
 
+from loader_model.arrays import real_array
+
 __all__ = ["as_positive", "as_signal", "shown"]
 
 
@@ -16,10 +18,7 @@ def shown(value: object) -> str:
 
 def as_signal(value: object, name: str) -> np.ndarray:
     """Return ``value`` as a non-empty, finite, 1-D float array or raise ValueError naming it."""
-    try:
-        array = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a 1-D array of real numbers; got {value!r}") from None
+    array = real_array(name, value, "a 1-D array of real numbers")
     if array.ndim != 1:
         raise ValueError(f"{name} must be a 1-D array; got shape {array.shape}")
     if array.size == 0:
@@ -36,8 +35,10 @@ def as_signal(value: object, name: str) -> np.ndarray:
 def as_positive(value: object, name: str, unit: str) -> float:
     """Return ``value`` as a finite float > 0 or raise ValueError naming it and its unit."""
     try:
+        if isinstance(value, bool | str | bytes):
+            raise TypeError(value)
         number = float(value)  # type: ignore[arg-type]
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         raise ValueError(
             f"{name} must be a positive number in {unit}; got {shown(value)}"
         ) from None

@@ -13,6 +13,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
 
+import numpy as np
+
 from loader_model.iso2631._checks import as_positive
 from loader_model.iso2631.exposure import (
     HEALTH_K_FACTORS,
@@ -35,6 +37,7 @@ from loader_model.iso2631.weightings import check_weighting_name
 __all__ = [
     "COMFORT_K_FACTORS",
     "DEFAULT_AXIS_WEIGHTINGS",
+    "MAX_K_FACTOR",
     "PAPER_K_FACTORS",
     "AxisEvaluation",
     "RecordEvaluation",
@@ -43,6 +46,8 @@ __all__ = [
     "health_assessment",
 ]
 
+#: Largest accepted k factor (ISO 2631-1 k factors lie between 0.2 and 1.4).
+MAX_K_FACTOR = 2.0
 #: Weighting per axis, seated person, seat surface (ISO 2631-1 Table 1 / 7.2.2, 8.2.2).
 DEFAULT_AXIS_WEIGHTINGS: Mapping[str, str] = MappingProxyType(
     {"x": "Wd", "y": "Wd", "z": "Wk", "roll": "We", "pitch": "We", "yaw": "We"}
@@ -59,10 +64,7 @@ PAPER_K_FACTORS: Mapping[str, float] = MappingProxyType(
 
 @dataclass(frozen=True)
 class AxisEvaluation:
-    """ISO 2631-1 values of one axis; accelerations in ``unit``, VDVs in ``unit`` x s^0.25.
-
-    ``crest_factor`` is NaN when the weighted signal is zero everywhere.
-    """
+    """ISO 2631-1 values of one axis; accelerations in ``unit``, VDVs in ``unit`` x s^0.25."""
 
     axis: str
     weighting: str
@@ -124,6 +126,14 @@ def evaluate_record(
     RecordEvaluation
         Values per axis, in the record's axis order, and a_v of Eq. 50.
     """
+    for what, overrides in (("weightings", weightings), ("k_factors", k_factors)):
+        for axis in overrides or {}:
+            check_axis_name(axis, f"{what} axis")
+            if axis not in record.axes:
+                raise ValueError(
+                    f"{what}[{axis!r}]: axis {axis!r} is not in the record; its axes are "
+                    f"{list(record.axes)}"
+                )
     axis_weightings = _merged(DEFAULT_AXIS_WEIGHTINGS, weightings, "weightings")
     axis_k_factors = _merged(COMFORT_K_FACTORS, k_factors, "k_factors")
     evaluations = []
@@ -131,10 +141,23 @@ def evaluate_record(
         weighting = str(axis_weightings[axis])
         check_weighting_name(weighting)
         k_factor = axis_k_factors[axis]
-        if not isinstance(k_factor, int | float) or not math.isfinite(k_factor) or k_factor < 0:
-            raise ValueError(f"k_factors[{axis!r}] must be a finite number >= 0; got {k_factor!r}")
+        if (
+            isinstance(k_factor, bool)
+            or not isinstance(k_factor, int | float)
+            or not 0.0 <= k_factor <= MAX_K_FACTOR
+        ):
+            raise ValueError(
+                f"k_factors[{axis!r}] must be a number in [0, {MAX_K_FACTOR:g}] (ISO 2631-1 uses "
+                f"0.2 to 1.4); got {k_factor!r}"
+            )
         weighted = weight_acceleration(acceleration, record.sample_rate_hz, weighting)
         rms = weighted_rms(weighted)
+        if not rms > 1e-9 * float(np.max(np.abs(acceleration))):  # zero up to rounding
+            raise ValueError(
+                f"axis {axis!r} carries no vibration (weighted r.m.s. 0: an all-zero or constant "
+                "channel, e.g. a disconnected sensor); its crest factor is undefined. Remove the "
+                "axis or check the sensor"
+            )
         evaluations.append(
             AxisEvaluation(
                 axis=axis,
@@ -142,7 +165,7 @@ def evaluate_record(
                 k_factor=float(k_factor),
                 unit=axis_unit(axis),
                 weighted_rms=rms,
-                crest_factor=crest_factor(weighted) if rms > 0.0 else math.nan,
+                crest_factor=crest_factor(weighted),
                 mtvv=maximum_transient_vibration_value(
                     weighted,
                     record.sample_rate_hz,

@@ -20,6 +20,14 @@ continuous response) over the band :data:`~loader_model.iso2631.weightings.NOMIN
 (10 Hz for Wf); lower rates are refused. Each design records the errors it achieves on a dense
 grid of that band (:attr:`DiscreteWeighting.max_magnitude_error_db`,
 :attr:`DiscreteWeighting.max_phase_error_deg`).
+
+ISO 8041's ±1 dB is 12 % in a_w. Measured against exact causal Annex A filtering
+(``python -m tests.iso_accuracy``), this design alone reads a_w 6.3 % high for Wj and 0.5-1 %
+high for the others at 200 Hz, and agrees to 3e-4 from 1 kHz on. :func:`weight_acceleration`
+therefore weights records sampled below 1 kHz at an integer multiple of their rate
+(:mod:`loader_model.iso2631.upsampling`): at 200 Hz, the lowest accepted rate, every weighting
+then reads sines of 0.5-31.5 Hz (Wf: 0.1-4 Hz) within 0.05 % and shocks within 0.6 %. At Wf's
+lowest rate of 10 Hz the top of its band (4 Hz, 0.4 fs) reads 1.4 % low, within ISO 8041.
 """
 
 from __future__ import annotations
@@ -34,6 +42,7 @@ import numpy as np
 import scipy.signal
 
 from loader_model.iso2631._checks import as_positive, as_signal, shown
+from loader_model.iso2631.upsampling import upsampling_factor, weight_upsampled
 from loader_model.iso2631.weightings import (
     NOMINAL_BAND_HZ,
     WEIGHTINGS,
@@ -122,6 +131,19 @@ class DiscreteWeighting:
         numpy.ndarray
             The weighted acceleration, same length and unit.
         """
+        signal = self.check(acceleration, initial_state)
+        sos = np.array(self.sos)  # scipy's sosfilt needs a writable copy of the read-only array
+        if initial_state == "rest":
+            return scipy.signal.lfilter(self.fir, 1.0, scipy.signal.sosfilt(sos, signal))
+        sos_state = scipy.signal.sosfilt_zi(sos) * signal[0]
+        intermediate, _ = scipy.signal.sosfilt(sos, signal, zi=sos_state)
+        sos_dc_gain = np.prod(np.sum(sos[:, :3], axis=1) / np.sum(sos[:, 3:], axis=1))
+        fir_state = scipy.signal.lfilter_zi(self.fir, 1.0) * sos_dc_gain * signal[0]
+        weighted, _ = scipy.signal.lfilter(self.fir, 1.0, intermediate, zi=fir_state)
+        return weighted
+
+    def check(self, acceleration: np.ndarray, initial_state: str) -> np.ndarray:
+        """Return the checked signal; refuse a bad initial state or a record that is too short."""
         signal = as_signal(acceleration, "acceleration")
         if initial_state not in INITIAL_STATES:
             raise ValueError(
@@ -134,15 +156,7 @@ class DiscreteWeighting:
                 f" = {duration_s:.4g} s at {self.sample_rate_hz:g} Hz; the filter needs at least"
                 f" its settling time {self.settling_time_s:.4g} s"
             )
-        sos = np.array(self.sos)  # scipy's sosfilt needs a writable copy of the read-only array
-        if initial_state == "rest":
-            return scipy.signal.lfilter(self.fir, 1.0, scipy.signal.sosfilt(sos, signal))
-        sos_state = scipy.signal.sosfilt_zi(sos) * signal[0]
-        intermediate, _ = scipy.signal.sosfilt(sos, signal, zi=sos_state)
-        sos_dc_gain = np.prod(np.sum(sos[:, :3], axis=1) / np.sum(sos[:, 3:], axis=1))
-        fir_state = scipy.signal.lfilter_zi(self.fir, 1.0) * sos_dc_gain * signal[0]
-        weighted, _ = scipy.signal.lfilter(self.fir, 1.0, intermediate, zi=fir_state)
-        return weighted
+        return signal
 
 
 def _check_sample_rate(weighting: str, sample_rate_hz: float) -> float:
@@ -270,6 +284,11 @@ def weight_acceleration(
 ) -> np.ndarray:
     """Frequency-weighted acceleration a_w(t) (ISO 2631-1 6.3; the paper's a_wi = W_i(a_i)).
 
+    Below 1 kHz the record is weighted at an integer multiple of its rate of at least 1 kHz
+    and taken back to its own samples (:mod:`loader_model.iso2631.upsampling`): at 200 Hz this
+    keeps a_w within 0.1 % of exact causal filtering where the direct design alone is up to
+    6.3 % high (Wj).
+
     Parameters
     ----------
     acceleration : array_like
@@ -295,6 +314,11 @@ def weight_acceleration(
     1.039
     """
     check_weighting_name(weighting)
-    return design_weighting_filter(weighting, sample_rate_hz).apply(
-        acceleration, initial_state=initial_state
-    )
+    design = design_weighting_filter(weighting, sample_rate_hz)
+    factor = upsampling_factor(design.sample_rate_hz)
+    if factor == 1:
+        return design.apply(acceleration, initial_state=initial_state)
+    design.check(acceleration, initial_state)  # length and initial state at the input rate
+    fine = design_weighting_filter(weighting, factor * design.sample_rate_hz)
+    signal = as_signal(acceleration, "acceleration")
+    return weight_upsampled(signal, fine.sos, fine.fir, factor, initial_state == "steady")

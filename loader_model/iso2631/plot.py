@@ -6,13 +6,12 @@ global backend is selected and importing this module stays cheap.
 
 from __future__ import annotations
 
-import os
-import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 
+from loader_model.export import check_output_path, write_atomically
 from loader_model.iso2631.weightings import (
     NOMINAL_BAND_HZ,
     WEIGHTING_NAMES,
@@ -37,8 +36,8 @@ def plot_weightings(
     Parameters
     ----------
     path : str or pathlib.Path
-        Output file, suffix one of :data:`PLOT_SUFFIXES`; written atomically (a temporary file
-        in the same folder is renamed), so a failure leaves no partial file.
+        Output file, suffix one of :data:`PLOT_SUFFIXES`; written atomically by
+        :func:`loader_model.export.write_atomically`, so a failure leaves no partial file.
     weightings : sequence of str
         Names from :data:`~loader_model.iso2631.weightings.WEIGHTING_NAMES`.
     frequency_range_hz : (float, float)
@@ -49,11 +48,7 @@ def plot_weightings(
     pathlib.Path
         ``path``.
     """
-    path = Path(path)
-    if path.suffix.lower() not in PLOT_SUFFIXES:
-        raise ValueError(f"plot path must end in one of {PLOT_SUFFIXES}; got {str(path)!r}")
-    if not path.parent.is_dir():
-        raise ValueError(f"plot path folder does not exist: {str(path.parent)!r}")
+    path = check_output_path(path, PLOT_SUFFIXES, "plot file")
     names = list(weightings)
     for name in names:
         check_weighting_name(name)
@@ -86,12 +81,6 @@ def plot_weightings(
     axes.grid(True, which="both", alpha=0.3)
     axes.legend()
 
-    handle, temporary = tempfile.mkstemp(suffix=path.suffix, dir=path.parent, prefix=".tmp-")
-    os.close(handle)
-    try:
-        figure.savefig(temporary, dpi=120)
-        os.replace(temporary, path)
-    except BaseException:
-        Path(temporary).unlink(missing_ok=True)
-        raise
-    return path
+    return write_atomically(
+        path, lambda temporary: figure.savefig(temporary, dpi=120), PLOT_SUFFIXES, "plot file"
+    )

@@ -7,18 +7,23 @@ Axis names follow ISO 2631-1 Figure 1 for a seated person: translations ``x`` (f
 
 from __future__ import annotations
 
-import io
-from collections.abc import Mapping
+import math
+import os
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from types import MappingProxyType
 
 import numpy as np
 
+from loader_model.files import iter_lines
 from loader_model.iso2631._checks import as_signal
 
 __all__ = [
     "AXES",
+    "CSV_BLOCK_ROWS",
+    "MAX_ACCELERATION",
+    "MAX_TIME_S",
     "ROTATIONAL_AXES",
     "TIME_JITTER_TOLERANCE",
     "VibrationRecord",
@@ -34,6 +39,16 @@ ROTATIONAL_AXES = frozenset({"roll", "pitch", "yaw"})
 #: Largest accepted deviation of a sampling interval from the mean interval, as a fraction of it
 #: (times rounded when written to CSV stay well inside it).
 TIME_JITTER_TOLERANCE = 0.01
+#: Largest plausible |acceleration| in m/s² or rad/s² (about 200 g).
+MAX_ACCELERATION = 2000.0
+#: Largest plausible |time| in s (about 32 years).
+MAX_TIME_S = 1e9
+#: Rows parsed at a time by :func:`read_vibration_csv`.
+CSV_BLOCK_ROWS = 65536
+_LIMIT_REASONS = {
+    False: "about 200 g; whole-body vibration stays below 10 g and shocks on a seat below 50 g",
+    True: "about 32 years; times are seconds from the start of a measurement",
+}
 
 
 def check_axis_name(axis: object, what: str = "axis") -> str:
@@ -71,6 +86,11 @@ class VibrationRecord:
         time_s = as_signal(self.time_s, "time_s").copy()
         if time_s.size < 2:
             raise ValueError(f"time_s must have at least 2 samples; got {time_s.size}")
+        if np.max(np.abs(time_s)) > MAX_TIME_S:
+            raise ValueError(
+                f"time_s must lie within +-{MAX_TIME_S:g} s ({_LIMIT_REASONS[True]}); got "
+                f"{time_s[np.argmax(np.abs(time_s))]:g} s"
+            )
         interval_s = np.diff(time_s)
         if np.any(interval_s <= 0.0):
             index = int(np.flatnonzero(interval_s <= 0.0)[0])
@@ -93,6 +113,13 @@ class VibrationRecord:
         for name, values in self.axes.items():
             check_axis_name(name, "axis name")
             column = as_signal(values, f"axis {name!r}").copy()
+            too_large = np.flatnonzero(np.abs(column) > MAX_ACCELERATION)
+            if too_large.size:
+                raise ValueError(
+                    f"axis {name!r} = {column[too_large[0]]:g} {axis_unit(name)} at index "
+                    f"{too_large[0]} is implausible; allowed: |value| <= {MAX_ACCELERATION:g} "
+                    f"({_LIMIT_REASONS[False]})"
+                )
             if column.size != time_s.size:
                 raise ValueError(
                     f"axis {name!r} must have as many samples as time_s ({time_s.size}); "
@@ -125,10 +152,88 @@ class VibrationRecord:
         return read_vibration_csv(path)
 
 
+def _header(lines: Iterator[str], name: str) -> list[str]:
+    for line in lines:
+        if line.strip() and not line.lstrip().startswith("#"):
+            header = [column.strip() for column in line.split(",")]
+            break
+    else:
+        raise ValueError(f"{name}: no header row; expected columns 'time' and some of {AXES}")
+    if "" in header:
+        raise ValueError(
+            f"{name}: header column {header.index('') + 1} has no name; got header {header}"
+        )
+    duplicates = sorted({column for column in header if header.count(column) > 1})
+    if duplicates:
+        raise ValueError(f"{name}: duplicate column(s) {duplicates} in header {header}")
+    if "time" not in header:
+        raise ValueError(f"{name}: header must contain a 'time' column (s); got {header}")
+    for column in header:
+        if column != "time":
+            check_axis_name(column, f"{name}: column name")
+    if len(header) < 2:
+        raise ValueError(f"{name}: header needs at least one axis column of {AXES}; got {header}")
+    return header
+
+
+def _bad_cell(name: str, header: list[str], line: str, number: int) -> ValueError:
+    """The error for the first cell of data line ``number`` that is not a finite number."""
+    cells = line.split(",")
+    if len(cells) != len(header):
+        return ValueError(
+            f"{name}: line {number} has {len(cells)} values but the header has "
+            f"{len(header)} columns {header}"
+        )
+    for column, cell in zip(header, cells, strict=True):
+        try:
+            value = float(cell)
+        except ValueError:
+            return ValueError(
+                f"{name}: line {number}, column {column!r}: {cell.strip()!r} is not a number"
+            )
+        if not math.isfinite(value):
+            return ValueError(
+                f"{name}: column {column!r} must be finite; got {value} on line {number}"
+            )
+    return ValueError(f"{name}: line {number} could not be read as numbers: {line!r}")
+
+
+def _parse_block(name: str, header: list[str], block: list[tuple[int, str]]) -> np.ndarray:
+    try:
+        data = np.loadtxt([line for _, line in block], delimiter=",", ndmin=2, dtype=float)
+    except ValueError:
+        data = None
+    if data is None or data.shape[1] != len(header) or not np.all(np.isfinite(data)):
+        for number, line in block:
+            error = _bad_cell(name, header, line, number)
+            if "could not be read" not in str(error):
+                raise error
+        raise _bad_cell(name, header, block[0][1], block[0][0])
+    return data
+
+
+def _check_magnitudes(name: str, header: list[str], data: np.ndarray, first_line: int) -> None:
+    for index, column in enumerate(header):
+        limit = MAX_TIME_S if column == "time" else MAX_ACCELERATION
+        bad = np.flatnonzero(np.abs(data[:, index]) > limit)
+        if bad.size:
+            unit = "s" if column == "time" else axis_unit(column)
+            raise ValueError(
+                f"{name}: column {column!r} = {data[bad[0], index]:g} {unit} on data row "
+                f"{first_line + bad[0]} is implausible; allowed: |value| <= {limit:g} {unit} "
+                f"({_LIMIT_REASONS[column == 'time']})"
+            )
+
+
 def read_vibration_csv(path: str | Path) -> VibrationRecord:
     """Read a CSV file with a header row: a ``time`` column in s and axis columns (see :data:`AXES`).
 
-    Lines starting with ``#`` and blank lines are skipped; the delimiter is a comma.
+    Lines starting with ``#`` and blank lines are skipped; the delimiter is a comma. The file
+    must be UTF-8 text, with or without a byte-order mark, with ``\n`` or ``\r\n`` line
+    endings (:func:`loader_model.files.iter_lines`). It is read in blocks of
+    :data:`CSV_BLOCK_ROWS` rows, so memory stays at about 2 x 8 bytes per value of the file.
+    Values beyond :data:`MAX_ACCELERATION` (accelerations) or :data:`MAX_TIME_S` (time) are
+    refused as implausible.
 
     Parameters
     ----------
@@ -139,43 +244,44 @@ def read_vibration_csv(path: str | Path) -> VibrationRecord:
     -------
     VibrationRecord
         The validated record (see its checks).
+
+    Raises
+    ------
+    ValueError
+        Naming the file and, for a bad value, its line and column.
     """
-    path = Path(path)
-    lines = [
-        line
-        for line in path.read_text(encoding="utf-8").splitlines()
-        if line.strip() and not line.lstrip().startswith("#")
-    ]
-    if not lines:
-        raise ValueError(f"{path}: no header row; expected columns 'time' and some of {AXES}")
-    header = [name.strip() for name in lines[0].split(",")]
-    duplicates = sorted({name for name in header if header.count(name) > 1})
-    if duplicates:
-        raise ValueError(f"{path}: duplicate column(s) {duplicates} in header {header}")
-    if "time" not in header:
-        raise ValueError(f"{path}: header must contain a 'time' column (s); got {header}")
-    for name in header:
-        if name != "time":
-            check_axis_name(name, f"{path}: column name")
-    if len(header) < 2:
-        raise ValueError(f"{path}: header needs at least one axis column of {AXES}; got {header}")
-    if len(lines) < 2:
-        raise ValueError(f"{path}: no data rows below the header {header}")
-    try:
-        data = np.loadtxt(io.StringIO("\n".join(lines[1:])), delimiter=",", ndmin=2)
-    except ValueError as error:
-        raise ValueError(f"{path}: could not read the data rows as numbers: {error}") from None
-    if data.shape[1] != len(header):
-        raise ValueError(
-            f"{path}: rows have {data.shape[1]} values but the header has {len(header)} columns"
-        )
-    columns = {name: data[:, index] for index, name in enumerate(header)}
-    for name, column in columns.items():
-        bad = np.flatnonzero(~np.isfinite(column))
-        if bad.size:
-            raise ValueError(
-                f"{path}: column {name!r} must be finite; got {column[bad[0]]} in data row "
-                f"{bad[0] + 1}"
-            )
+    name = os.fspath(path) if isinstance(path, str | os.PathLike) else repr(path)
+    lines = iter_lines(path, "vibration CSV file")
+    header = _header(lines, name)
+    blocks: list[np.ndarray] = []
+    block: list[tuple[int, str]] = []
+    rows = 0
+    first_data_line = None
+    for number, line in enumerate(lines, start=2):
+        if not line.strip() or line.lstrip().startswith("#"):
+            continue
+        first_data_line = first_data_line or number
+        block.append((number, line))
+        if len(block) == CSV_BLOCK_ROWS:
+            blocks.append(_parse_block(name, header, block))
+            _check_magnitudes(name, header, blocks[-1], rows + 1)
+            rows += len(block)
+            block = []
+    if block:
+        blocks.append(_parse_block(name, header, block))
+        _check_magnitudes(name, header, blocks[-1], rows + 1)
+        rows += len(block)
+    if not rows:
+        raise ValueError(f"{name}: no data rows below the header {header}")
+    columns = {column: np.empty(rows) for column in header}
+    start = 0
+    while blocks:
+        data = blocks.pop(0)
+        for index, column in enumerate(header):
+            columns[column][start : start + data.shape[0]] = data[:, index]
+        start += data.shape[0]
     time_s = columns.pop("time")
-    return VibrationRecord(time_s=time_s, axes=columns)
+    try:
+        return VibrationRecord(time_s=time_s, axes=columns)
+    except ValueError as error:
+        raise ValueError(f"{name}: {error}") from None

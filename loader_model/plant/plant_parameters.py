@@ -99,7 +99,7 @@ class PlantOptions:
 
 
 def plant_parameter_vector(
-    loader: Any, load: Any, options: PlantOptions | None = None
+    loader: Any, load: Any, options: PlantOptions | None = None, *, check: bool = True
 ) -> np.ndarray:
     """The plant's parameter vector (order :data:`PLANT_PARAMETER_NAMES`) from parameter files.
 
@@ -111,12 +111,19 @@ def plant_parameter_vector(
         :func:`loader_model.parameters.resolve_loader_and_load` accepts).
     options : PlantOptions, optional
         Switches; default: pump, valves, leakage and friction on, accumulator off.
+    check : bool
+        Check the loader and load together at the static equilibrium first
+        (:func:`loader_model.parameter_checks.check_combination`).
     """
     from loader_model import parameters
 
     options = options or PlantOptions()
-    loader, load = parameters.resolve_loader_and_load(loader, load)
-    mechanical = parameters.model_parameter_values(loader, load)
+    given = isinstance(loader, parameters.LoaderParameters) and isinstance(
+        load, parameters.BucketLoad
+    )
+    if not given:  # files or names: resolving them also checks the combination
+        loader, load = parameters.resolve_loader_and_load(loader, load)
+    mechanical = parameters.model_parameter_values(loader, load, check=check and given)
     cyl, hyd, leak, fric = loader.cylinders, loader.hydraulics, loader.leakage, loader.friction
     pump, acc = loader.pump, loader.accumulator
     values = mechanical | {
