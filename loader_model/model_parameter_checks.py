@@ -19,6 +19,7 @@ from loader_model.parameter_schema import (
     BucketLoad,
     ChassisParameters,
     EnvironmentParameters,
+    TyreParameters,
 )
 
 __all__ = ["MODEL_PARAMETER_RANGES", "check_model_parameters"]
@@ -59,6 +60,9 @@ MODEL_PARAMETER_RANGES: Mapping[str, Range] = {
     **{f"{p}_{axis}": COORDINATE for p in "ABCDSNEG" for axis in "xy"},
     **{f"k_{a}{d}": _allowed(AxleTyre, f"k_{d}") for a in "AB" for d in "xy"},
     **{f"c_{a}{d}": _allowed(AxleTyre, f"c_{d}") for a in "AB" for d in "xy"},
+    "mu_road": _allowed(TyreParameters, "friction_coefficient"),
+    "F_transition": _allowed(TyreParameters, "contact_transition"),
+    "tau_slip": _allowed(TyreParameters, "slip_relaxation_time"),
     "F_Ay0": _STATIC_LOAD,
     "F_By0": _STATIC_LOAD,
 }

@@ -8,6 +8,7 @@ import pytest
 
 import loader_model_generated as generated
 from loader_model.dynamics import OUTPUT_NAMES, STATE_NAMES, LoaderDynamics
+from tests.numerics import central_difference
 
 ACCELERATIONS = generated.function("point_accelerations")
 SPECIFIC_FORCES = generated.function("specific_forces")
@@ -27,15 +28,6 @@ def _outputs(model: LoaderDynamics, x: np.ndarray, u: float, w: np.ndarray) -> n
     a_h, a_n, a_s = (np.asarray(a).ravel() for a in ACCELERATIONS(p, pd, pdd, model.parameters))
     f_h, f_n, f_s = (np.asarray(f).ravel() for f in SPECIFIC_FORCES(p, pd, pdd, model.parameters))
     return np.array([*pd[:3], p[3] - p[2], *a_h, a_n[1], *a_s, pdd[2], *f_h, f_n[1], *f_s])
-
-
-def _central_difference(func, point: np.ndarray, steps: np.ndarray) -> np.ndarray:
-    columns = []
-    for k, step in enumerate(steps):
-        delta = np.zeros_like(point)
-        delta[k] = step
-        columns.append((func(point + delta) - func(point - delta)) / (2 * step))
-    return np.column_stack(columns)
 
 
 @pytest.fixture
@@ -62,18 +54,18 @@ def test_linearisation_matches_finite_differences(
     p, pd = x[0::2], x[1::2]
     linear = model.linearise(p, pd, u, w[0:4], w[4:8], w[8:11])
     steps_x = 1e-6 * np.maximum(np.abs(x), 1.0)
-    a_fd = _central_difference(lambda z: _state_derivative(model, z, u, w), x, steps_x)
-    b_fd = _central_difference(
+    a_fd = central_difference(lambda z: _state_derivative(model, z, u, w), x, steps_x)
+    b_fd = central_difference(
         lambda z: _state_derivative(model, x, z[0], w), np.array([u]), np.array([1e-3 * abs(u)])
     )
-    e_fd = _central_difference(
+    e_fd = central_difference(
         lambda z: _state_derivative(model, x, u, z), w, 1e-6 * np.maximum(np.abs(w), 1.0)
     )
-    c_fd = _central_difference(lambda z: _outputs(model, z, u, w), x, steps_x)
-    du_fd = _central_difference(
+    c_fd = central_difference(lambda z: _outputs(model, z, u, w), x, steps_x)
+    du_fd = central_difference(
         lambda z: _outputs(model, x, z[0], w), np.array([u]), np.array([1e-3 * abs(u)])
     )
-    dw_fd = _central_difference(
+    dw_fd = central_difference(
         lambda z: _outputs(model, x, u, z), w, 1e-6 * np.maximum(np.abs(w), 1.0)
     )
     for actual, reference in (

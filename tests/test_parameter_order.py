@@ -44,3 +44,10 @@ def test_unknown_load_case_is_rejected() -> None:
         ValueError, match=r"load 'heavy' is neither a load case \['empty', 'full'\]"
     ):
         LoaderDynamics.from_parameters(None, "heavy")
+
+
+def test_every_model_parameter_has_a_range() -> None:
+    """The runtime API applies the parameter files' ranges to every generated parameter."""
+    from loader_model.model_parameter_checks import MODEL_PARAMETER_RANGES
+
+    assert set(MODEL_PARAMETER_RANGES) == set(generated.PARAMETER_NAMES)

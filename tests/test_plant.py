@@ -18,6 +18,7 @@ from loader_model.plant.plant_parameters import (
     PlantOptions,
     plant_parameter_vector,
 )
+from tests.numerics import central_difference
 
 OPTIONS = {
     "drive": PlantOptions(),
@@ -65,15 +66,6 @@ def test_static_state_is_an_equilibrium(load: str, option: str) -> None:
     assert named["p_A"] / 1e5 == pytest.approx(expected_bar, abs=0.01)
 
 
-def _central(func, point: np.ndarray, steps: np.ndarray) -> np.ndarray:
-    columns = []
-    for k, step in enumerate(steps):
-        delta = np.zeros_like(point)
-        delta[k] = step
-        columns.append((func(point + delta) - func(point - delta)) / (2 * step))
-    return np.column_stack(columns)
-
-
 @pytest.mark.parametrize("option", ["drive", "accumulator"])
 def test_ad_linearisation_matches_finite_differences(option: str) -> None:
     """At a moving, off-equilibrium point with every part of the drive active."""
@@ -96,12 +88,12 @@ def test_ad_linearisation_matches_finite_differences(option: str) -> None:
     steps_x = 1e-6 * np.maximum(np.abs(x), scale)
     steps_w = 1e-6 * np.maximum(np.abs(w), 1e-3)
     references = {
-        "A": _central(lambda z: rates(z, u, w), x, steps_x),
-        "B": _central(lambda z: rates(x, z[0], w), np.array([u]), np.array([1e-9])),
-        "E": _central(lambda z: rates(x, u, z), w, steps_w),
-        "C": _central(lambda z: outputs(z, u, w), x, steps_x),
-        "D_u": _central(lambda z: outputs(x, z[0], w), np.array([u]), np.array([1e-9])),
-        "D_w": _central(lambda z: outputs(x, u, z), w, steps_w),
+        "A": central_difference(lambda z: rates(z, u, w), x, steps_x),
+        "B": central_difference(lambda z: rates(x, z[0], w), np.array([u]), np.array([1e-9])),
+        "E": central_difference(lambda z: rates(x, u, z), w, steps_w),
+        "C": central_difference(lambda z: outputs(z, u, w), x, steps_x),
+        "D_u": central_difference(lambda z: outputs(x, z[0], w), np.array([u]), np.array([1e-9])),
+        "D_w": central_difference(lambda z: outputs(x, u, z), w, steps_w),
     }
     for name, reference in references.items():
         actual = getattr(linear, name)
