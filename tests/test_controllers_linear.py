@@ -152,3 +152,19 @@ def test_virtual_accumulator_boom_mode_damping_against_baseline(
     }
     assert damping["baseline"] == pytest.approx(zeta_baseline, rel=0.01)
     assert damping["virtual_accumulator"] == pytest.approx(zeta_virtual, rel=0.01)
+
+
+@pytest.mark.parametrize("name", CONTROLLER_NAMES)
+def test_controller_functions_are_named_and_saturate(name: str) -> None:
+    f = controller_function(name)
+    assert f.name() == name
+    assert f.name_in() == ["z", "y_sensor", "settings"] and f.name_out() == ["z_next", "u"]
+    _, settings, y0 = case("full")
+    z0 = linear_controller(name, settings, y0).operating_state
+    for jump, sign in ((-1e8, 1.0), (1e8, -1.0)):  # a 1000 bar step in p_A through the high-pass
+        y = y0.copy()
+        y[SENSOR_NAMES.index("p_A")] += jump
+        u = float(f(z0, y, settings)[1])
+        hold = static_state(plant_parameter_vector(None, "full"))[1]
+        expected = hold if name in ("baseline", "passive") else sign * 46e-6
+        assert u == pytest.approx(expected, rel=1e-12)
