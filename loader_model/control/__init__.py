@@ -1,25 +1,56 @@
-"""Controller design (paper section 3): output-feedback LQR and CasADi H2 gain optimisation.
+"""Controllers (paper section 3): settings, sensors, the 1 kHz controllers and their linear
+equivalents, output-feedback LQR and CasADi H2 gain optimisation.
 
 The algorithms are generic in the plant: they take numpy matrices or python-control systems.
 """
 
+from loader_model.control.controllers import (
+    CONTROLLER_NAMES,
+    controller_function,
+    controller_state_names,
+)
 from loader_model.control.design_plant import DesignPlant
 from loader_model.control.h2_cost import h2_cost_function, h2_costs
 from loader_model.control.h2_design import H2DesignError, H2DesignResult, design_h2_gain
+from loader_model.control.linear_controller import LinearController, closed_loop, linear_controller
 from loader_model.control.output_feedback import (
     NoStabilisingGainError,
     OutputFeedbackResult,
     output_feedback_lqr,
 )
+from loader_model.control.sensors import SENSOR_NAMES, SensorModel, sensor_signals
+from loader_model.control.settings import (
+    SETTINGS_NAMES,
+    ControllerSettings,
+    default_settings,
+    load_settings,
+    settings_vector,
+    settings_vector_for_plant,
+)
 
 __all__ = [
+    "CONTROLLER_NAMES",
+    "SENSOR_NAMES",
+    "SETTINGS_NAMES",
+    "ControllerSettings",
     "DesignPlant",
     "H2DesignError",
     "H2DesignResult",
+    "LinearController",
     "NoStabilisingGainError",
     "OutputFeedbackResult",
+    "SensorModel",
+    "closed_loop",
+    "controller_function",
+    "controller_state_names",
+    "default_settings",
     "design_h2_gain",
     "h2_cost_function",
     "h2_costs",
+    "linear_controller",
+    "load_settings",
     "output_feedback_lqr",
+    "sensor_signals",
+    "settings_vector",
+    "settings_vector_for_plant",
 ]

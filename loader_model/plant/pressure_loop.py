@@ -1,6 +1,8 @@
 r"""The pressure loop of section 3.2 on the detailed plant, and its comparison with Eq. 43.
 
-Control law (sections 3.2, 3.3), on normalised signals with the bucket load's pressure norm
+Control law (sections 3.2, 3.3; implemented once, as the virtual accumulator of
+:mod:`loader_model.control.controllers`, here its continuous linear equivalent), on normalised
+signals with the bucket load's pressure norm
 ‖p_A‖∞ (100 bar empty, 200 bar full) and the pump's maximum displacement:
 
 .. math::
@@ -72,31 +74,54 @@ def pressure_loop(
         raise ValueError(f"highpass_rad_s = {highpass_rad_s!r}; allowed: None or a number > 0")
     drive = control.ss(plant[["p_A"], ["V_p_ref"]], name="drive")
     drive.set_inputs(["V_p_ref"]), drive.set_outputs(["p_A"])
-    gain = k_p * max_displacement_m3_rev / pressure_norm_pa
-    if highpass_rad_s is None:
-        sensor = control.ss([], [], [], [[1.0]], inputs=["p_A"], outputs=["p_A_hp"], name="hp")
-    else:
-        sensor = control.ss(
-            [[-highpass_rad_s]],
-            [[1.0]],
-            [[-highpass_rad_s]],
-            [[1.0]],
-            inputs=["p_A"],
-            outputs=["p_A_hp"],
-            name="hp",
-        )
-    controller = control.ss(
-        [],
-        [],
-        [],
-        [[gain, -gain]],
-        inputs=["p_A_ref", "p_A_hp"],
-        outputs=["V_p_ref"],
-        name="pressure_controller",
-    )
+    feedback = _pressure_feedback(pressure_norm_pa, max_displacement_m3_rev, k_p, highpass_rad_s)
+    # V_p,ref = k_p V_max (p_A,ref − HP(p_A)) / norm: the reference gain is minus the
+    # high-frequency gain on p_A (the high-pass passes p_A with gain 1 at high frequency)
+    gain = -float(np.squeeze(feedback.D))
+    reference = control.ss([], [], [], [[gain]], inputs=["p_A_ref"], outputs=["u_ref"], name="ref")
+    summing = control.summing_junction(inputs=["u_ref", "u_fb"], output="V_p_ref", name="sum")
     return control.interconnect(
-        [drive, sensor, controller], inputs=["p_A_ref"], outputs=["p_A"], name="pressure_loop"
+        [drive, feedback, reference, summing],
+        inputs=["p_A_ref"],
+        outputs=["p_A"],
+        name="pressure_loop",
     )
+
+
+def _pressure_feedback(
+    norm: float, max_displacement: float, k_p: float, corner: float | None
+) -> Any:
+    """p_A [Pa] -> u_fb [m³/rev]: the virtual accumulator's continuous linear equivalent
+    (:mod:`loader_model.control.controllers`, p_A,ref = 0), so the law has one implementation;
+    ``corner=None`` keeps only its feed-through (the high-pass's gain 1 on p_A)."""
+    import dataclasses
+
+    import control
+
+    from loader_model.control import (
+        SENSOR_NAMES,
+        default_settings,
+        linear_controller,
+        settings_vector,
+    )
+
+    settings = dataclasses.replace(default_settings(), k_p=k_p, highpass_corner=corner or 1.0)
+    vector = settings_vector(
+        settings,
+        pressure_norm=norm,
+        max_displacement=max_displacement,
+        hold_command=0.0,
+        gravity=9.81,  # the next three do not enter the p_A path
+        accelerometer_x=1.0,
+    )
+    equivalent = linear_controller(
+        "virtual_accumulator", vector, np.zeros(len(SENSOR_NAMES))
+    ).continuous
+    column = SENSOR_NAMES.index("p_A")
+    a, b, c, d = equivalent.A, equivalent.B[:, [column]], equivalent.C, equivalent.D[:, [column]]
+    if corner is None:
+        a, b, c = np.zeros((0, 0)), np.zeros((0, 1)), np.zeros((1, 0))
+    return control.ss(a, b, c, d, inputs=["p_A"], outputs=["u_fb"], name="pressure_feedback")
 
 
 @dataclass(frozen=True)

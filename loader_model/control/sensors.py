@@ -1,0 +1,93 @@
+r"""Sensors of the active damping controller (section 3.3) and a seeded numpy sensor model.
+
+The controller reads five signals, all plant outputs (:data:`loader_model.plant.plant.OUTPUT_NAMES`):
+
+- ``f_Hx``, ``f_Hy``: triaxial accelerometer at the chassis centre of gravity H (x and y used);
+- ``f_Ny``: vertical accelerometer at N, a chassis point ahead of H;
+- ``phi``: boom angle relative to the chassis, φ = θ2 − θ1;
+- ``p_A``: piston-side pressure, gauge [Pa].
+
+Accelerometers read specific force (acceleration minus gravity) in the chassis frame, so a loader
+at rest pitched nose-up by θ1 reads f_Hx = g sin θ1 and f_Hy = f_Ny = g cos θ1 (checked on the
+plant in ``tests/test_controllers_sensors.py``).
+The pitch acceleration follows from the two vertical readings (rigid chassis):
+
+.. math::
+
+    f_{Ny} - f_{Hy} = \ddot\theta_1 (N_x - H_x) - \dot\theta_1^2 (N_y - H_y)
+    \quad\Rightarrow\quad \hat{\ddot\theta}_1 = \frac{f_{Ny} - f_{Hy}}{N_x - H_x}
+
+with H the origin, neglecting the centripetal term (second order in θ̇1).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+__all__ = ["SENSOR_NAMES", "SensorModel", "pitch_acceleration", "sensor_signals"]
+
+#: Order of the controller's ``y_sensor`` input; each is a plant output of the same name.
+SENSOR_NAMES: tuple[str, ...] = ("f_Hx", "f_Hy", "f_Ny", "phi", "p_A")
+
+
+def pitch_acceleration(f_hy: Any, f_ny: Any, accelerometer_x: Any) -> Any:
+    """θ̈1 estimated from the vertical readings at H and N (section 3.3); numpy or CasADi."""
+    return (f_ny - f_hy) / accelerometer_x
+
+
+def sensor_signals(y: np.ndarray) -> np.ndarray:
+    """The ideal sensor readings (order :data:`SENSOR_NAMES`) from plant outputs ``y``.
+
+    ``y`` has the plant outputs along its last axis (one sample or a time series).
+    """
+    from loader_model.plant.plant import OUTPUT_NAMES
+
+    y = np.asarray(y, dtype=float)
+    if y.shape[-1] != len(OUTPUT_NAMES):
+        raise ValueError(
+            f"y has {y.shape[-1]} outputs on its last axis; expected {len(OUTPUT_NAMES)}"
+        )
+    return y[..., [OUTPUT_NAMES.index(name) for name in SENSOR_NAMES]]
+
+
+@dataclass(frozen=True)
+class SensorModel:
+    """Noise, offset and quantisation of the five sensors (order :data:`SENSOR_NAMES`), seeded.
+
+    Attributes
+    ----------
+    noise_std : tuple of 5 float
+        Standard deviation of white measurement noise per sample, in the signal's unit.
+    offset : tuple of 5 float
+        Constant bias added to each reading.
+    quantisation : tuple of 5 float
+        Step of the converter (0: none); readings are rounded to the nearest multiple.
+    seed : int
+        Seed of the noise generator (:meth:`measure` is deterministic for a given seed).
+    """
+
+    noise_std: tuple[float, ...] = (0.0,) * 5
+    offset: tuple[float, ...] = (0.0,) * 5
+    quantisation: tuple[float, ...] = (0.0,) * 5
+    seed: int = 0
+
+    def __post_init__(self) -> None:
+        for name in ("noise_std", "offset", "quantisation"):
+            value = np.asarray(getattr(self, name), dtype=float)
+            if value.shape != (len(SENSOR_NAMES),) or not np.all(np.isfinite(value)):
+                raise ValueError(f"{name} = {value!r}; allowed: {len(SENSOR_NAMES)} finite numbers")
+            if name != "offset" and np.any(value < 0):
+                raise ValueError(f"{name} = {value!r}; allowed: numbers >= 0")
+
+    def measure(self, readings: np.ndarray) -> np.ndarray:
+        """Corrupt ideal ``readings`` (samples × 5, or one sample of 5) with offset, noise, rounding."""
+        readings = np.asarray(readings, dtype=float)
+        rng = np.random.default_rng(self.seed)
+        noisy = readings + np.asarray(self.offset)
+        noisy = noisy + rng.standard_normal(readings.shape) * np.asarray(self.noise_std)
+        step = np.asarray(self.quantisation)
+        safe = np.where(step > 0, step, 1.0)
+        return np.where(step > 0, np.round(noisy / safe) * safe, noisy)
