@@ -138,7 +138,7 @@ def check_loader(params: LoaderParameters) -> None:
     high = cyl.retracted_length + cyl.stroke - END_STOP_MARGIN_M
     if not low <= length <= high:
         raise ValueError(
-            f"geometry.E: cylinder length |E - C| = {length:.6g} m at the operating point is "
+            f"geometry.C, geometry.E: cylinder length |E - C| = {length:.6g} m at the operating point is "
             f"outside [{low:.6g}, {high:.6g}] m (cylinders.retracted_length to + cylinders.stroke, "
             f"{END_STOP_MARGIN_M * 1e3:g} mm clear of each end stop)"
         )
