@@ -183,24 +183,37 @@ def simulate(
     )
     period, backend = compile_period(controller, period_s, substeps, jit)
     chunk = min(int(chunk_periods), count)
-    roll = period.mapaccum("roll", chunk)
+    roll = _rolled(period, chunk)
+    ncarry = len(STATE_NAMES) + nz + 1
+    # Arrays in CasADi's column-major layout: a (chunk, n) C-order array is an (n, chunk) matrix.
     carry = np.concatenate([x0, z0, [u0]])
-    carries, outputs, commands = [], [], []
+    w0, w1 = np.empty((chunk, len(EXOGENOUS_NAMES))), np.empty((chunk, len(EXOGENOUS_NAMES)))
+    block = np.empty((chunk, ncarry))
+    y_block, u_block = np.empty((chunk, len(OUTPUT_NAMES))), np.empty(chunk)
+    buffer, trigger = roll.buffer()
+    for index, array in enumerate((carry, w0, w1, params, settings_vector)):
+        buffer.set_arg(index, memoryview(array))
+    for index, array in enumerate((block, y_block, u_block)):
+        buffer.set_res(index, memoryview(array))
+    carries = np.empty((count, ncarry))
+    outputs = np.empty((count, len(OUTPUT_NAMES)))
+    commands = np.empty(count)
     start_wall = time.perf_counter()
     for start in range(0, count, chunk):
         stop = min(start + chunk, count)
-        columns = np.arange(start, start + chunk).clip(max=count - 1)
-        w0, w1 = exogenous[columns].T, exogenous[columns + 1].T
-        result = roll(carry, w0, w1, params, settings_vector)
-        block, y, u = (np.asarray(value, dtype=float)[:, : stop - start] for value in result)
-        _finite_or_raise(block, y, start, period_s)
-        carries.append(np.column_stack([carry, block[:, :-1]]))
-        outputs.append(y)
-        commands.append(u)
-        carry = block[:, -1]
+        rows = np.arange(start, start + chunk).clip(max=count - 1)
+        w0[:] = exogenous[rows]
+        w1[:] = exogenous[rows + 1]
+        trigger()
+        size = stop - start
+        _finite_or_raise(block[:size].T, y_block[:size].T, start, period_s)
+        carries[start] = carry
+        carries[start + 1 : stop] = block[: size - 1]
+        outputs[start:stop] = y_block[:size]
+        commands[start:stop] = u_block[:size]
+        carry[:] = block[size - 1]
     wall_s = time.perf_counter() - start_wall
-    states = np.hstack(carries)
-    y_all, u_all = np.hstack(outputs), np.hstack(commands).ravel()
+    states, y_all, u_all = carries.T, outputs.T, commands
     columns_out: dict[str, np.ndarray] = dict(
         zip(STATE_NAMES, states[: len(STATE_NAMES)], strict=True)
     )
@@ -232,6 +245,31 @@ def simulate(
     return SimulationResult(
         time_rows, columns_out, carry[: len(STATE_NAMES)].copy(), events, metadata
     )
+
+
+_ROLLED: dict[tuple[int, int], ca.Function] = {}
+
+
+def _rolled(period: ca.Function, chunk: int) -> ca.Function:
+    """``period.mapaccum`` over ``chunk`` periods with params and settings given once (MX wrapper
+    that repeats them), built once per period Function and chunk size."""
+    key = (id(period), chunk)
+    if key not in _ROLLED:
+        mapped = period.mapaccum("roll_mapped", chunk)
+        carry = ca.MX.sym("carry", period.size1_in(0))
+        w0 = ca.MX.sym("w0", period.size1_in(1), chunk)
+        w1 = ca.MX.sym("w1", period.size1_in(2), chunk)
+        params = ca.MX.sym("params", period.size1_in(3))
+        settings = ca.MX.sym("settings", period.size1_in(4))
+        outputs = mapped(carry, w0, w1, ca.repmat(params, 1, chunk), ca.repmat(settings, 1, chunk))
+        _ROLLED[key] = ca.Function(
+            "roll",
+            [carry, w0, w1, params, settings],
+            outputs,
+            ["carry", "w0", "w1", "params", "settings"],
+            ["carry_next", "y", "u"],
+        )
+    return _ROLLED[key]
 
 
 def _extend(disturbance: np.ndarray, count: int) -> np.ndarray:
