@@ -67,6 +67,7 @@ def main() -> int:
     _report("linearise (A, B, E, C, D)", linearise, solve, unit="us")
     _bench_plant(forward / calls)
     _bench_roads(solve)
+    _bench_simulator()
     _control_design()
     return 0
 
@@ -221,6 +222,67 @@ def _control_design() -> None:
     print(
         f"{'':<42}J = {h2.cost:.10g} from {h2.initial_cost:.6g} (Table 3), Nelder-Mead {baseline_cost:.10g}"
     )
+
+
+def _scipy_closed_loop(road, params, duration_s: float) -> np.ndarray:
+    """The closed loop as users usually write it: the plant Function called with NumPy arrays per
+    right-hand side, ``solve_ivp(method="LSODA")`` over each 1 ms period, the (hold) controller
+    between periods. (Radau with its finite-difference Jacobian met NaN at the first board.)"""
+    from scipy.integrate import solve_ivp
+
+    from loader_model.plant.equilibrium import static_state
+    from loader_model.plant.plant import plant_function
+    from loader_model.simulation.controllers import hold_controller
+
+    plant = plant_function()
+    state, command = static_state(params)
+    controller, z, no_settings, no_force = (
+        hold_controller(command),
+        np.zeros(0),
+        np.zeros(0),
+        np.zeros(3),
+    )
+
+    def exogenous(t: float) -> np.ndarray:
+        return np.concatenate([road.road(t), road.road_rate(t), no_force])
+
+    def rhs(t: float, x: np.ndarray, u: float) -> np.ndarray:
+        return np.asarray(plant(x, u, exogenous(t), params)[0]).ravel()
+
+    seats = []
+    for k in range(round(duration_s / 1e-3)):
+        start = k * 1e-3
+        outputs = plant(state, command, exogenous(start), params)[1]
+        z, u = controller(z, outputs, no_settings)
+        command = float(u)
+        solution = solve_ivp(
+            rhs, (start, start + 1e-3), state, method="LSODA", args=(command,), rtol=1e-6, atol=1e-9
+        )
+        state = solution.y[:, -1]
+        seats.append(np.asarray(outputs).ravel()[8])
+    return np.asarray(seats)
+
+
+def _bench_simulator() -> None:
+    """The closed-loop simulator (issue 12): one 20 s run over the paper's course at 9 km/h
+    (baseline controller, empty bucket), compiled ROS2 + mapaccum, against the scipy loop above."""
+    from loader_model.plant.plant_parameters import plant_parameter_vector
+    from loader_model.simulation import paper_course
+    from loader_model.simulation.simulator import course_input, simulate
+
+    params = plant_parameter_vector(None, "empty")
+    road = course_input(paper_course(9.0, settle_s=10.0), params)  # 22 s of road
+    start = time.perf_counter()
+    simulate(road, params, duration_s=20.0)
+    _report("simulate 20 s: first call (with JIT)", time.perf_counter() - start, unit="s")
+    fast = _median_seconds(lambda: simulate(road, params, duration_s=20.0), 7)
+    _report("simulate 20 s (goal: real-time factor>=300)", fast, unit="s")
+    print(f"{'':<42}real-time factor {20.0 / fast:.0f}")
+    start = time.perf_counter()
+    _scipy_closed_loop(road, params, 20.0)
+    baseline = time.perf_counter() - start
+    _report("baseline: scipy LSODA per period, 20 s", baseline, unit="s")
+    print(f"{'':<42}simulator is {baseline / fast:.0f} x faster (goal >= 8 x)")
 
 
 if __name__ == "__main__":

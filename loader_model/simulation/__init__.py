@@ -8,6 +8,17 @@
 - :mod:`~loader_model.simulation.travel`: the plant's road input w(t), ẇ(t) per axle as a table.
 - :mod:`~loader_model.simulation.courses`: the paper's course, the Fig. 10 single obstacle.
 - :mod:`~loader_model.simulation.road_plot`: figure of a course (matplotlib, lazily).
+
+The closed loop (imported from their modules, not here, so that this package stays free of
+CasADi at import):
+
+- :mod:`~loader_model.simulation.controllers`: the controller interface, ``hold_controller``.
+- :mod:`~loader_model.simulation.stepper`: one 1 ms period (ROS2), JIT-compiled.
+- :mod:`~loader_model.simulation.simulator`: ``simulate`` over a road input, ``course_input``.
+- :mod:`~loader_model.simulation.result`, :mod:`~loader_model.simulation.events`: the labelled
+  time series with units and events, CSV and NPZ.
+- :mod:`~loader_model.simulation.reference`: CVODES reference at rtol 1e-10 (for the tests).
+- :mod:`~loader_model.simulation.seat_plot`: figure of the seat accelerations.
 """
 
 from __future__ import annotations

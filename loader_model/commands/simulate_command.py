@@ -1,0 +1,116 @@
+"""Simulate the loader over a course with a ride controller and evaluate the seat (ISO 2631-1).
+
+The plant (pump-controlled lift cylinders, tyres that may leave the ground) starts in its static
+equilibrium and drives over the course at constant speed; the controller runs at 1 kHz. Prints
+the ISO 2631-1 evaluation of the seat (x: Wd, z: Wk, pitch: We; Eq. 49, a_total Eq. 50 with
+k = 0.4 for pitch) and the events of the run (tyre lift-off, end stops, cavitation, pump
+saturation); writes the time series (CSV with units or NPZ) and a PNG of the seat accelerations.
+
+Controllers: ``baseline`` (the pump holds the boom at its static command) and ``passive``
+(the same, with the accumulator connected: the commercial ride control).
+"""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from loader_model.commands.common import add_model_arguments
+
+__all__ = ["CONTROLLERS", "HELP", "add_arguments", "run"]
+
+HELP = "simulate a course with a ride controller and evaluate the seat per ISO 2631-1"
+
+_SHOWN_EVENTS = 10
+
+#: Controllers the command knows.
+CONTROLLERS = ("baseline", "passive")
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Register the arguments of ``loader-model simulate``."""
+    add_model_arguments(parser)
+    parser.add_argument("--controller", choices=CONTROLLERS, default="baseline")
+    parser.add_argument(
+        "--speed", type=float, default=9.0, metavar="KMH", help="speed in km/h (default 9)"
+    )
+    parser.add_argument(
+        "--course",
+        default="paper",
+        metavar="COURSE",
+        help="'paper' (five 4 cm boards; 9 or 18 km/h), 'single' (one board) or "
+        "'iso8608:CLASS' (random road, class A-H); default paper",
+    )
+    parser.add_argument(
+        "--duration", type=float, default=None, metavar="S", help="simulated time in s"
+    )
+    parser.add_argument("--seed", type=int, default=0, metavar="N", help="seed of random roads")
+    parser.add_argument(
+        "--output", metavar="FILE", default=None, help="time series: FILE.csv or FILE.npz"
+    )
+    parser.add_argument(
+        "--plot",
+        metavar="FILE.png",
+        default=None,
+        help="seat-acceleration figure (default: beside --output, with suffix .png)",
+    )
+
+
+def _course(text: str, speed_kmh: float, duration_s: float | None, seed: int):
+    from loader_model.simulation.courses import iso8608_course, paper_course, single_obstacle_course
+
+    if text == "paper":
+        return paper_course(speed_kmh)
+    if text == "single":
+        return single_obstacle_course(speed_kmh)
+    name, separator, road_class = text.partition(":")
+    if name == "iso8608" and separator and road_class:
+        length_m = 200.0 if duration_s is None else speed_kmh / 3.6 * duration_s + 20.0
+        return iso8608_course(road_class.strip().upper(), speed_kmh, length_m=length_m, seed=seed)
+    raise ValueError(f"--course must be paper, single or iso8608:CLASS; got {text!r}")
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run the simulation, print the evaluation and write the files. Returns 0."""
+    from loader_model.export import check_output_path
+    from loader_model.iso2631 import format_evaluation
+    from loader_model.plant.plant_parameters import PlantOptions, plant_parameter_vector
+    from loader_model.simulation.result import RESULT_SUFFIXES
+    from loader_model.simulation.seat_plot import PLOT_SUFFIXES, plot_seat
+    from loader_model.simulation.simulator import course_input, simulate
+
+    plot = args.plot
+    if args.output is not None:
+        check_output_path(args.output, RESULT_SUFFIXES, "--output")
+        plot = plot or str(Path(args.output).with_suffix(".png"))
+    if plot is not None:
+        check_output_path(plot, PLOT_SUFFIXES, "--plot")
+    if args.duration is not None and not 0.0 < args.duration <= 3600.0:
+        raise ValueError(f"--duration must be in (0, 3600] s; got {args.duration!r}")
+    if not 0.0 < args.speed <= 40.0:
+        raise ValueError(f"--speed must be in (0, 40] km/h; got {args.speed!r}")
+    if args.seed < 0:
+        raise ValueError(f"--seed must be >= 0; got {args.seed}")
+    options = PlantOptions(accumulator=args.controller == "passive")
+    params = plant_parameter_vector(args.params, args.load, options)
+    course = _course(args.course, args.speed, args.duration, args.seed)
+    result = simulate(course_input(course, params), params, duration_s=args.duration)
+    title = f"{course.name}; {args.controller} controller, load {args.load}"
+    print(format_evaluation(result.seat_evaluation(), title=title))
+    print(
+        f"simulated {result.time_s.size * result.metadata['period_s']:.3f} s in "
+        f"{result.metadata['wall_time_s']:.3f} s (real-time factor "
+        f"{result.metadata['real_time_factor']:.0f}, {result.metadata['backend']})"
+    )
+    kinds = sorted({event.kind for event in result.events})
+    counts = ", ".join(f"{sum(e.kind == kind for e in result.events)} {kind}" for kind in kinds)
+    print(f"events: {len(result.events)}" + (f" ({counts})" if counts else ""))
+    for event in result.events[:_SHOWN_EVENTS]:
+        print(f"  {event.describe()}")
+    if len(result.events) > _SHOWN_EVENTS:
+        print(f"  ... {len(result.events) - _SHOWN_EVENTS} more (all in the result's events)")
+    if args.output is not None:
+        print(f"wrote {result.write(args.output)}")
+    if plot is not None:
+        print(f"wrote {plot_seat(result, plot, title)}")
+    return 0

@@ -1,0 +1,174 @@
+r"""One controller period of the closed loop as one CasADi Function, compiled and rolled out.
+
+Integration scheme: the two-stage L-stable Rosenbrock method ROS2 (Verwer, Spee, Blom,
+Hundsdorfer, SIAM J. Sci. Comput. 20, 1999), with γ = 1 + 1/√2 and W = I − γ h J,
+
+.. math::
+
+    W k_1 = f(t_n, x_n), \qquad W k_2 = f(t_n + h, x_n + h k_1) - 2 k_1, \qquad
+    x_{n+1} = x_n + \tfrac{3}{2} h k_1 + \tfrac{1}{2} h k_2 ,
+
+second order for any W (so freezing J at the step's start and ignoring ∂f/∂t keeps the order),
+linearly implicit: no Newton iteration, one Jacobian and one factorisation per (sub)step. It is
+stable on this plant's stiff hydraulic and tyre modes (eigenvalues to about −4e3 rad/s at rest),
+where explicit RK at 1 ms is not (DESIGN.md). J is the AD Jacobian of the plant; W is factored by
+an LU without pivoting written out in SX over its structural non-zeros (W = I − γ h J is close
+to the identity in the mechanical rows; a symbolic QR divides by columns that are numerically zero
+at rest and gave NaN). The road input enters as the table samples at the period's ends and is
+interpolated linearly inside it (:mod:`~loader_model.simulation.travel`).
+
+One period (:func:`period_function`): y_k = h(x_k, w_k), (z_{k+1}, u_k) = controller(z_k, y_k),
+then ``substeps`` ROS2 steps over the period with u_k held. The carry (x, z, u) rolls over many
+periods with ``mapaccum``; the period is JIT-compiled to C (``"compiler": "shell"``) where a C
+compiler works, else evaluated by CasADi's SX virtual machine.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import casadi as ca
+
+from loader_model.plant.plant import EXOGENOUS_NAMES, OUTPUT_NAMES, STATE_NAMES, plant_function
+
+__all__ = ["JIT_OPTIONS", "compile_period", "lu_solver", "period_function"]
+
+#: Options of the JIT-compiled period (``-O1``: compiles in about 0.5 s, runs as fast as -O3).
+JIT_OPTIONS: dict[str, object] = {
+    "jit": True,
+    "compiler": "shell",
+    "jit_options": {"flags": ["-O1"], "verbose": False},
+    "jit_cleanup": True,
+}
+
+_GAMMA = 1.0 + 1.0 / math.sqrt(2.0)
+
+
+def lu_solver(matrix: ca.SX) -> Callable[[ca.SX], ca.SX]:
+    """LU factorisation without pivoting of a square SX ``matrix``, over its structural non-zeros.
+
+    Returns a function that solves ``matrix @ v = b`` for an SX column ``b``. Symbolic zeros are
+    skipped, so the expression grows with the fill-in of the sparsity pattern, not with n³.
+    """
+    n = matrix.shape[0]
+    dense = ca.densify(matrix)
+    a = [[dense[i, j] for j in range(n)] for i in range(n)]
+    for k in range(n):
+        for i in range(k + 1, n):
+            if a[i][k].is_zero():
+                continue
+            factor = a[i][k] / a[k][k]
+            a[i][k] = factor
+            for j in range(k + 1, n):
+                if not a[k][j].is_zero():
+                    a[i][j] = a[i][j] - factor * a[k][j]
+
+    def solve(b: ca.SX) -> ca.SX:
+        v = [b[i] for i in range(n)]
+        for i in range(n):
+            for j in range(i):
+                if not a[i][j].is_zero():
+                    v[i] = v[i] - a[i][j] * v[j]
+        for i in reversed(range(n)):
+            for j in range(i + 1, n):
+                if not a[i][j].is_zero():
+                    v[i] = v[i] - a[i][j] * v[j]
+            v[i] = v[i] / a[i][i]
+        return ca.vertcat(*v)
+
+    return solve
+
+
+def period_function(
+    controller: ca.Function, period_s: float = 1e-3, substeps: int = 1
+) -> ca.Function:
+    """One controller period of the closed loop (module notes) as an SX Function.
+
+    Parameters
+    ----------
+    controller : casadi.Function
+        ``controller(z, y, settings) -> (z_next, u)``
+        (:func:`~loader_model.simulation.controllers.check_controller`).
+    period_s : float
+        Controller period h in s.
+    substeps : int
+        ROS2 steps per period.
+
+    Returns
+    -------
+    casadi.Function
+        ``period(carry, w0, w1, params, settings) -> (carry_next, y, u)`` with
+        carry = (x, z, u_previous), w0, w1 the exogenous input (road, road rate, disturbance;
+        :data:`~loader_model.plant.plant.EXOGENOUS_NAMES`) at the period's start and end, y the
+        plant's outputs at its start and u the command held over it.
+    """
+    plant = plant_function()
+    nx, nz = len(STATE_NAMES), controller.size1_in(0)
+    carry = ca.SX.sym("carry", nx + nz + 1)
+    x, z, u_previous = carry[:nx], carry[nx : nx + nz], carry[nx + nz]
+    w0 = ca.SX.sym("w0", len(EXOGENOUS_NAMES))
+    w1 = ca.SX.sym("w1", len(EXOGENOUS_NAMES))
+    params = ca.SX.sym("params", plant.size1_in(3))
+    settings = ca.SX.sym("settings", controller.size1_in(2))
+    _, y = plant(x, u_previous, w0, params)  # y does not depend on u (checked in the tests)
+    z_next, u = controller(z, y, settings)
+    step = period_s / substeps
+    xs, us, ws = ca.SX.sym("x", nx), ca.SX.sym("u"), ca.SX.sym("w", len(EXOGENOUS_NAMES))
+    rate_s = plant(xs, us, ws, params)[0]
+    rate_and_jacobian = ca.Function(
+        "rate_and_jacobian", [xs, us, ws, params], [rate_s, ca.jacobian(rate_s, xs)]
+    )
+    state = x
+    for index in range(substeps):
+        w_start = w0 + (w1 - w0) * (index / substeps)
+        w_end = w0 + (w1 - w0) * ((index + 1) / substeps)
+        rate, jacobian = rate_and_jacobian(state, u, w_start, params)
+        solve = lu_solver(ca.SX.eye(nx) - _GAMMA * step * jacobian)
+        k1 = solve(rate)
+        k2 = solve(plant(state + step * k1, u, w_end, params)[0] - 2.0 * k1)
+        state = state + 1.5 * step * k1 + 0.5 * step * k2
+    outputs = ca.cse(ca.vertcat(state, z_next, u, y, u))
+    carry_next = outputs[: nx + nz + 1]
+    y_out = outputs[nx + nz + 1 : nx + nz + 1 + len(OUTPUT_NAMES)]
+    return ca.Function(
+        "closed_loop_period",
+        [carry, w0, w1, params, settings],
+        [carry_next, y_out, outputs[-1]],
+        ["carry", "w0", "w1", "params", "settings"],
+        ["carry_next", "y", "u"],
+    )
+
+
+_COMPILED: dict[tuple[str, float, int, bool], tuple[ca.Function, str]] = {}
+
+
+def compile_period(
+    controller: ca.Function, period_s: float = 1e-3, substeps: int = 1, jit: bool = True
+) -> tuple[ca.Function, str]:
+    """The period Function, JIT-compiled if ``jit`` and a C compiler works; cached per process.
+
+    Returns
+    -------
+    (casadi.Function, str)
+        The Function and its backend, ``"jit"`` or ``"sx"`` (the fallback when compiling fails).
+    """
+    key = (controller.serialize(), float(period_s), int(substeps), bool(jit))
+    if key not in _COMPILED:
+        period = period_function(controller, period_s, substeps)
+        compiled, backend = period, "sx"
+        if jit:
+            try:
+                compiled = ca.Function(
+                    "closed_loop_period_jit",
+                    [*period.sx_in()],
+                    period.call(period.sx_in()),
+                    period.name_in(),
+                    period.name_out(),
+                    JIT_OPTIONS,
+                )
+                backend = "jit"
+            except RuntimeError:  # no working C compiler: interpret the SX graph
+                compiled, backend = period, "sx"
+        _COMPILED[key] = (compiled, backend)
+    return _COMPILED[key]
