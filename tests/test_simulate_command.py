@@ -44,3 +44,35 @@ def test_simulate_errors_are_clear(tmp_path, capsys, monkeypatch, arguments, mes
     error = capsys.readouterr().err
     assert message in error and "Traceback" not in error
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("controller", ["virtual-accumulator", "skyhook"])
+def test_ride_controllers_run_from_their_fixed_point(controller: str, capsys) -> None:
+    """The controllers of loader_model.control close the loop in the simulator; started at their
+    fixed point they leave a resting loader at rest (no start transient from the static p_A)."""
+    from loader_model.parameters import bucket_load
+    from loader_model.plant.plant_parameters import plant_parameter_vector
+    from loader_model.simulation.courses import paper_course
+    from loader_model.simulation.ride_control import controller_setup, plant_controller
+    from loader_model.simulation.simulator import course_input, simulate
+
+    params = plant_parameter_vector(None, "empty")
+    settings, state = controller_setup(
+        controller, params, bucket_load("empty").pressure_normalisation
+    )
+    course = paper_course(9)
+    result = simulate(
+        course_input(course, params),
+        params,
+        plant_controller(controller),
+        settings=settings,
+        controller_state=state,
+        duration_s=1.0,  # the first board comes later: the loader rests
+    )
+    # at rest: the piston pressure holds within 1 Pa of 89 bar, the chassis does not move
+    assert np.ptp(result["p_A"]) < 1.0
+    assert np.abs(result["y_H"]).max() < 1e-9
+    assert (
+        main(["simulate", "--controller", controller, "--course", "single", "--duration", "4"]) == 0
+    )
+    assert "a_v" in capsys.readouterr().out

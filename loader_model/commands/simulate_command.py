@@ -6,8 +6,11 @@ the ISO 2631-1 evaluation of the seat (x: Wd, z: Wk, pitch: We; Eq. 49, a_total 
 k = 0.4 for pitch) and the events of the run (tyre lift-off, end stops, cavitation, pump
 saturation); writes the time series (CSV with units or NPZ) and a PNG of the seat accelerations.
 
-Controllers: ``baseline`` (the pump holds the boom at its static command) and ``passive``
-(the same, with the accumulator connected: the commercial ride control).
+Controllers: ``baseline`` (the pump holds the boom at its static command), ``passive`` (the
+same, with the accumulator connected: the commercial ride control), ``virtual-accumulator``
+(pressure regulation, p_A,ref = 0 on the high-passed p_A) and ``skyhook`` (Table 3 gains on the
+semi-integrated accelerations; section 3.3), each the 1 kHz controller of
+:mod:`loader_model.control` started at its fixed point.
 """
 
 from __future__ import annotations
@@ -24,7 +27,7 @@ HELP = "simulate a course with a ride controller and evaluate the seat per ISO 2
 _SHOWN_EVENTS = 10
 
 #: Controllers the command knows.
-CONTROLLERS = ("baseline", "passive")
+CONTROLLERS = ("baseline", "passive", "virtual-accumulator", "skyhook")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -94,7 +97,19 @@ def run(args: argparse.Namespace) -> int:
     options = PlantOptions(accumulator=args.controller == "passive")
     params = plant_parameter_vector(args.params, args.load, options)
     course = _course(args.course, args.speed, args.duration, args.seed)
-    result = simulate(course_input(course, params), params, duration_s=args.duration)
+    control: dict = {}
+    if args.controller in ("virtual-accumulator", "skyhook"):
+        from loader_model.parameters import resolve_loader_and_load
+        from loader_model.simulation.ride_control import controller_setup, plant_controller
+
+        _, load = resolve_loader_and_load(args.params, args.load)
+        settings, state = controller_setup(args.controller, params, load.pressure_normalisation)
+        control = {
+            "controller": plant_controller(args.controller),
+            "settings": settings,
+            "controller_state": state,
+        }
+    result = simulate(course_input(course, params), params, duration_s=args.duration, **control)
     title = f"{course.name}; {args.controller} controller, load {args.load}"
     print(format_evaluation(result.seat_evaluation(), title=title))
     print(
