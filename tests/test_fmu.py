@@ -100,6 +100,37 @@ def test_fmu_reproduces_cvodes_on_the_plant_function(plant_fmu: Path, params: np
         assert check.relative_error[name] < CROSS_CHECK_RTOL, (name, check.relative_error)
 
 
+@pytest.mark.parametrize(
+    "controller",
+    [
+        "skyhook",  # the most involved: four filter states, all five sensors
+        pytest.param("virtual_accumulator", marks=pytest.mark.slow),
+        pytest.param("baseline", marks=pytest.mark.slow),
+    ],
+)
+def test_closed_loop_fmu_reproduces_the_sampled_loop(
+    controller: str, params: np.ndarray, tmp_path: Path
+) -> None:
+    """The controller sampled by time events in the FMU against the project's discrete loop."""
+    from loader_model.control.settings import default_settings, settings_vector_for_plant
+    from loader_model.parameters import bucket_load
+
+    settings = settings_vector_for_plant(
+        default_settings(), params, bucket_load("empty").pressure_normalisation
+    )
+    path = build.export_plant_fmu(
+        tmp_path / "loop.fmu", params, controller=controller, settings=settings
+    )
+    assert fmpy.validation.validate_fmu(str(path)) == []
+    md = fmpy.read_model_description(str(path))
+    command = next(v for v in md.modelVariables if v.name == "V_p_ref")
+    assert (command.causality, command.variability) == ("output", "discrete")
+    assert [v.name for v in md.modelVariables if v.causality == "input"] == list(EXOGENOUS_NAMES)
+    check = cross_check(path, params, controller=controller, settings=settings)
+    for name in ("f_Sx", "f_Sy", "p_A", "p_B", "V_p_ref"):
+        assert check.relative_error[name] < CROSS_CHECK_RTOL, (name, check.relative_error)
+
+
 def _no_partial(folder: Path) -> list[str]:
     return sorted(p.name for p in folder.iterdir())
 
@@ -116,8 +147,8 @@ def test_export_fmu_command_writes_an_fmu(tmp_path: Path, capsys: pytest.Capture
 @pytest.mark.parametrize(
     ("argv", "message"),
     [
-        (["--controller", "skyhook"], "not built yet"),
         (["--load", "heavy"], "neither a load case"),
+        (["--params", "missing.toml"], "missing.toml"),
     ],
 )
 def test_export_fmu_bad_arguments(

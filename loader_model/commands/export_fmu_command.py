@@ -3,9 +3,10 @@
 Inputs: the pump displacement command V_p_ref and the road under each axle with its rates (and the
 disturbance forces at H); outputs: seat and chassis accelerometers, pressures, boom angle, chassis
 motion, tyre loads; every plant parameter is an FMU parameter with unit and description; the
-states start at the static equilibrium. Only the plant is exported (``--controller none``): the
-project's controllers are discrete at 1 kHz, which a Model Exchange FMU would have to carry as
-time events, and that is not built yet.
+states start at the static equilibrium. ``--controller`` closes the loop inside the FMU with one
+of the project's discrete 1 kHz controllers, kept discrete and sampled by FMI time events (not a
+continuous equivalent; see :mod:`loader_model.fmu.closed_loop`): the pump command is then an
+output and the controller's settings (Table 3, the shipped defaults) are FMU parameters.
 """
 
 from __future__ import annotations
@@ -17,8 +18,13 @@ from loader_model.commands.common import add_model_arguments
 
 HELP = "export the nonlinear plant as an FMI 2.0 Model Exchange FMU"
 
-#: Accepted by ``--controller``; only ``none`` is built (see the module docstring).
-CONTROLLER_CHOICES = ("none", "baseline", "skyhook", "virtual-accumulator")
+#: ``--controller`` choice -> controller Function name (None: the plant alone).
+CONTROLLER_CHOICES = {
+    "none": None,
+    "baseline": "baseline",
+    "skyhook": "skyhook",
+    "virtual-accumulator": "virtual_accumulator",
+}
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -26,9 +32,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_model_arguments(parser)
     parser.add_argument(
         "--controller",
-        choices=CONTROLLER_CHOICES,
+        choices=list(CONTROLLER_CHOICES),
         default="none",
-        help="controller inside the FMU; only 'none' (the plant alone) is built (default: none)",
+        help="close the loop inside the FMU with this 1 kHz controller (default: none, the plant)",
     )
     parser.add_argument(
         "--no-sources",
@@ -44,21 +50,33 @@ def run(args: argparse.Namespace) -> int:
     from loader_model.fmu.build import export_plant_fmu, find_compiler
 
     check_output_path(args.output, (".fmu",), "FMU")  # before any work
-    if args.controller != "none":
-        raise ValueError(
-            f"--controller {args.controller}: a closed-loop FMU is not built yet (the controllers "
-            "are discrete at 1 kHz and would need time events in the Model Exchange FMU); "
-            "allowed: none (the plant alone, to be closed in the importing tool)"
-        )
     find_compiler()  # a clear error before the parameter files are read
+    from loader_model.parameters import resolve_loader_and_load
     from loader_model.plant.plant_parameters import plant_parameter_vector
 
-    params = plant_parameter_vector(args.params, args.load)
+    loader, load = resolve_loader_and_load(args.params, args.load)
+    params = plant_parameter_vector(loader, load)
+    controller = CONTROLLER_CHOICES[args.controller]
+    settings = None
+    if controller is not None:
+        from loader_model.control.settings import default_settings, settings_vector_for_plant
+
+        settings = settings_vector_for_plant(
+            default_settings(), params, load.pressure_normalisation
+        )
     started = time.perf_counter()
-    path = export_plant_fmu(args.output, params, include_sources=not args.no_sources)
+    path = export_plant_fmu(
+        args.output,
+        params,
+        controller=controller,
+        settings=settings,
+        include_sources=not args.no_sources,
+    )
     seconds = time.perf_counter() - started
     size_kb = path.stat().st_size / 1024
+    what = "plant" if controller is None else f"plant + {args.controller} controller"
     print(
-        f"wrote {path} (FMI 2.0 Model Exchange, linux64, {size_kb:.0f} kB, built in {seconds:.1f} s)"
+        f"wrote {path}: {what}, FMI 2.0 Model Exchange, linux64, {size_kb:.0f} kB, "
+        f"built in {seconds:.1f} s"
     )
     return 0

@@ -24,7 +24,10 @@ from pathlib import Path
 import casadi as ca
 import numpy as np
 
+from loader_model.control.controllers import controller_state_names
+from loader_model.control.settings import SETTINGS_NAMES
 from loader_model.export import check_output_path, write_atomically
+from loader_model.fmu.closed_loop import closed_loop_functions, closed_loop_variables
 from loader_model.fmu.model_description import MODEL_IDENTIFIER, model_description_xml
 from loader_model.fmu.variables import (
     COMPLETED_PARAMETERS,
@@ -95,46 +98,66 @@ def fmu_functions() -> tuple[ca.Function, ca.Function]:
     return ode, start
 
 
+def _names(variables: list) -> list[str]:
+    return [v.name for v in variables]
+
+
 def _c_array(values: np.ndarray) -> str:
     return "{" + ", ".join(repr(float(v)) for v in values) + "}"
 
 
-def _write_sources(folder: Path, params: np.ndarray) -> tuple[bytes, str]:
-    """Write the C sources into ``folder``; return (modelDescription.xml, GUID)."""
+def _write_sources(
+    folder: Path, params: np.ndarray, controller: str | None, settings: np.ndarray | None
+) -> tuple[bytes, str]:
+    """Write the C sources into ``folder``; return (modelDescription.xml, model identifier)."""
     ode, start = fmu_functions()
     generator = ca.CodeGenerator("fmu_model.c", {"with_header": True})
     generator.add(ode)
     generator.add(start)
-    generator.generate(str(folder) + os.sep)
     x0, u0 = static_state(params)
     variables = fmu_variables(params, x0, u0)
+    identifier, n_set, n_z = MODEL_IDENTIFIER, 0, 0
+    if controller is not None:
+        sample, init = closed_loop_functions(controller, ode, start)
+        generator.add(sample)
+        generator.add(init)
+        variables = closed_loop_variables(variables, controller, settings)
+        identifier = f"loader_{controller}"
+        n_set, n_z = sample.size1_in(2) - len(FMU_PARAMETER_NAMES), sample.size1_in(3)
+    generator.generate(str(folder) + os.sep)
     source = (folder / "fmu_model.c").read_bytes()
-    digest = hashlib.sha256(source + repr([v for v in variables]).encode()).hexdigest()
+    digest = hashlib.sha256(source + repr(variables).encode()).hexdigest()
     guid = "{" + str(uuid.uuid5(uuid.NAMESPACE_URL, f"loader-model:fmu:{digest}")) + "}"
     starts = np.array([0.0 if v.start is None else v.start for v in variables])
     nominals = np.array([v.nominal for v in variables if v.nominal is not None])
     config = (
         "/* written by loader_model.fmu.build; do not edit */\n"
-        f'#define MODEL_GUID "{guid}"\n'
+        + ("#define CLOSED_LOOP 1\n" if controller is not None else "")
+        + f'#define MODEL_GUID "{guid}"\n'
         f"#define N_P {len(FMU_PARAMETER_NAMES)}\n"
+        f"#define N_SET {n_set}\n"
         f"#define N_IN {len(INPUT_NAMES) + len(EXOGENOUS_NAMES)}\n"
         f"#define N_X {len(STATE_NAMES)}\n"
         f"#define N_Y {len(OUTPUT_NAMES)}\n"
-        f"#define START_VALUES {_c_array(starts)}\n"
+        f"#define N_Z {n_z}\n"
+        + (f"#define VR_TS {_names(variables).index('controller.T_s')}\n" if n_set else "")
+        + f"#define START_VALUES {_c_array(starts)}\n"
         f"#define NOMINAL_VALUES {_c_array(nominals)}\n"
     )
     (folder / "fmu_config.h").write_text(config)
     shutil.copy(_HERE / "fmi2_wrapper.c", folder / "fmi2_wrapper.c")
     from loader_model import __version__ as version
 
+    what = "the plant alone" if controller is None else f"plant and {controller} controller"
     xml = model_description_xml(
         variables,
         guid,
-        "Nonlinear plant of the pump-controlled skid-steer loader (loader-model), "
-        "states start at the static equilibrium",
+        f"Nonlinear skid-steer loader (loader-model): {what}; states start at the static "
+        "equilibrium",
         f"loader-model {version} (CasADi {ca.__version__} code generation, FMI 2.0 wrapper)",
+        model_identifier=identifier,
     )
-    return xml, guid
+    return xml, identifier
 
 
 def _compile(compiler: str, folder: Path, library: Path) -> None:
@@ -161,7 +184,12 @@ def _compile(compiler: str, folder: Path, library: Path) -> None:
 
 
 def export_plant_fmu(
-    path: str | os.PathLike[str], params: np.ndarray, *, include_sources: bool = True
+    path: str | os.PathLike[str],
+    params: np.ndarray,
+    *,
+    controller: str | None = None,
+    settings: np.ndarray | None = None,
+    include_sources: bool = True,
 ) -> Path:
     """Build a Model Exchange FMU (FMI 2.0, linux64) of the nonlinear plant and write ``path``.
 
@@ -173,6 +201,12 @@ def export_plant_fmu(
         Plant parameter vector (order ``PLANT_PARAMETER_NAMES``, from
         :func:`~loader_model.plant.plant_parameters.plant_parameter_vector`): the parameters'
         start values; the states start at its static equilibrium.
+    controller : str, optional
+        One of :data:`~loader_model.control.controllers.CONTROLLER_NAMES` to close the loop
+        inside the FMU (:mod:`loader_model.fmu.closed_loop`); None: the plant alone.
+    settings : numpy.ndarray, optional
+        The controller's settings vector (:func:`~loader_model.control.settings.
+        settings_vector_for_plant`); required with ``controller``.
     include_sources : bool
         Also put the C sources into ``sources/`` of the FMU (for inspection and rebuilding).
 
@@ -194,20 +228,24 @@ def export_plant_fmu(
             f"params must be {len(PLANT_PARAMETER_NAMES)} finite plant parameters; "
             f"got shape {params.shape}"
         )
+    if controller is not None:
+        controller_state_names(controller)  # ValueError naming the allowed ones
+        if settings is None or np.shape(settings) != (len(SETTINGS_NAMES),):
+            raise ValueError(f"a controller needs its {len(SETTINGS_NAMES)} settings")
     compiler = find_compiler()
     folder_name = _platform_folder()
     with tempfile.TemporaryDirectory(prefix="loader_fmu_") as temporary:
         build = Path(temporary)
         sources = build / "sources"
         sources.mkdir()
-        xml, _ = _write_sources(sources, params)
-        library = build / f"{MODEL_IDENTIFIER}.so"
+        xml, identifier = _write_sources(sources, params, controller, settings)
+        library = build / f"{identifier}.so"
         _compile(compiler, sources, library)
 
         def write(archive_path: Path) -> None:
             with zipfile.ZipFile(archive_path, "w", zipfile.ZIP_DEFLATED) as archive:
                 archive.writestr("modelDescription.xml", xml)
-                archive.write(library, f"binaries/{folder_name}/{MODEL_IDENTIFIER}.so")
+                archive.write(library, f"binaries/{folder_name}/{identifier}.so")
                 if include_sources:
                     for item in sorted(sources.iterdir()):
                         archive.write(item, f"sources/{item.name}")

@@ -46,7 +46,8 @@ class CrossCheck:
     reference, fmu : dict of str to numpy.ndarray
         Signals of the reference integration and of the FMU on ``time``.
     relative_error : dict of str to float
-        max |fmu − reference| / max |reference − reference[0]| per signal.
+        max |fmu − reference| / max |reference − reference[0]| per signal (a constant signal,
+        such as the baseline's command: relative to its value).
     """
 
     time: np.ndarray
@@ -74,36 +75,72 @@ def bump_input(
 
 
 def reference_response(
-    params: np.ndarray, time: np.ndarray, w: np.ndarray, reltol: float = 1e-11
+    params: np.ndarray,
+    time: np.ndarray,
+    w: np.ndarray,
+    reltol: float = 1e-11,
+    controller: str | None = None,
+    settings: np.ndarray | None = None,
 ) -> dict[str, np.ndarray]:
-    """Outputs of the plant Function integrated by cvodes with the input held over each step."""
+    """Outputs of the plant Function integrated by cvodes with the input held over each step.
+
+    With ``controller``, the loop is closed as the 1 kHz target closes it: at each sample t_k the
+    controller Function reads the sensors of y(t_k) and its command is held until t_{k+1}; its
+    states start at their fixed point (:func:`~loader_model.control.linear_controller.
+    linear_controller`). The time grid must then be the controller's sample grid. The command is
+    returned as ``V_p_ref``.
+    """
     plant = plant_function()
     x0, u0 = static_state(params)
     nominal = state_nominals(x0, params)
     z = ca.SX.sym("z", x0.size)
     held = ca.SX.sym("w", len(EXOGENOUS_NAMES))
-    xdot, _ = plant(nominal * z, u0, held, params)
+    command = ca.SX.sym("u")
+    xdot, _ = plant(nominal * z, command, held, params)
     steps = np.diff(time)
     if not np.allclose(steps, steps[0], rtol=1e-9):
         raise ValueError("reference_response needs a uniform time grid")
     step = ca.integrator(
         "reference_step",
         "cvodes",
-        {"x": z, "p": held, "ode": xdot / nominal},
+        {"x": z, "p": ca.vertcat(command, held), "ode": xdot / nominal},
         0.0,
         float(steps[0]),
         {"abstol": reltol, "reltol": reltol, "max_num_steps": 100000},
     )
-    states = [x0 / nominal]
-    for k in range(time.size - 1):
-        states.append(np.asarray(step(x0=states[-1], p=w[k])["xf"]).ravel())
+    law = sensors = None
+    if controller is not None:
+        from loader_model.control.controllers import controller_function
+        from loader_model.control.linear_controller import linear_controller
+        from loader_model.control.sensors import sensor_signals
+
+        law, sensors = controller_function(controller), sensor_signals
+        y0 = np.asarray(plant(x0, u0, w[0], params)[1]).ravel()
+        z_c = linear_controller(controller, settings, sensors(y0)).operating_state
+    states, commands = [x0 / nominal], []
+    for k in range(time.size):
+        u = u0
+        if law is not None:
+            y = np.asarray(plant(states[-1] * nominal, u0, w[k], params)[1]).ravel()
+            z_next, u_k = law(z_c, sensors(y), settings)
+            z_c, u = np.asarray(z_next).ravel(), float(u_k)
+        commands.append(u)
+        if k + 1 < time.size:
+            xf = step(x0=states[-1], p=np.concatenate([[u], w[k]]))["xf"]
+            states.append(np.asarray(xf).ravel())
     x = np.array(states) * nominal
-    outputs = plant.map(time.size)(x.T, u0, w.T, params)[1]
+    outputs = plant.map(time.size)(x.T, np.array(commands)[None, :], w.T, params)[1]
     y = np.asarray(outputs)
-    return {name: y[i] for i, name in enumerate(OUTPUT_NAMES)}
+    return {name: y[i] for i, name in enumerate(OUTPUT_NAMES)} | {"V_p_ref": np.array(commands)}
 
 
-def cross_check(fmu_path: str | Path, params: np.ndarray, reltol: float = 1e-8) -> CrossCheck:
+def cross_check(
+    fmu_path: str | Path,
+    params: np.ndarray,
+    reltol: float = 1e-8,
+    controller: str | None = None,
+    settings: np.ndarray | None = None,
+) -> CrossCheck:
     """Simulate ``fmu_path`` with FMPy over :func:`bump_input` and compare with the reference.
 
     Parameters
@@ -114,19 +151,24 @@ def cross_check(fmu_path: str | Path, params: np.ndarray, reltol: float = 1e-8) 
         The plant parameter vector the FMU was built with.
     reltol : float
         Relative tolerance of FMPy's CVode (its absolute tolerance is this times the nominals).
+    controller, settings
+        For a closed-loop FMU: the controller and its settings vector it was built with; the
+        pump command ``V_p_ref`` is then compared too.
     """
     import fmpy
 
     time, w = bump_input()
-    reference = reference_response(params, time, w)
+    reference = reference_response(params, time, w, controller=controller, settings=settings)
+    compared = COMPARED if controller is None else (*COMPARED, "V_p_ref")
     # a staircase table (each sample repeated at the next sample's time): FMPy then stops at
     # every sample as an input event and restarts CVode there, so the input is exactly held
-    names = (*INPUT_NAMES, *EXOGENOUS_NAMES)
+    names = EXOGENOUS_NAMES if controller is not None else (*INPUT_NAMES, *EXOGENOUS_NAMES)
     stairs = np.repeat(time, 2)[1:]  # t0, t1, t1, t2, t2, ..., tN, tN
     held = np.repeat(w, 2, axis=0)[:-1]  # w0, w0, w1, w1, w2, ..., wN
     signal = np.zeros(stairs.size, dtype=[("time", float)] + [(name, float) for name in names])
     signal["time"] = stairs
-    signal[INPUT_NAMES[0]] = static_state(params)[1]
+    if controller is None:
+        signal[INPUT_NAMES[0]] = static_state(params)[1]
     for i, name in enumerate(EXOGENOUS_NAMES):
         signal[name] = held[:, i]
     result = fmpy.simulate_fmu(
@@ -136,13 +178,14 @@ def cross_check(fmu_path: str | Path, params: np.ndarray, reltol: float = 1e-8) 
         relative_tolerance=reltol,
         input=signal,
         record_events=False,
-        output=list(COMPARED),
+        output=list(compared),
     )
     if result["time"].size != time.size or not np.allclose(result["time"], time, atol=1e-12):
         raise RuntimeError("FMPy returned a different output grid than the input's")
-    fmu = {name: np.asarray(result[name]) for name in COMPARED}
+    fmu = {name: np.asarray(result[name]) for name in compared}
     errors = {}
-    for name in COMPARED:
+    for name in compared:
         excursion = np.max(np.abs(reference[name] - reference[name][0]))
-        errors[name] = float(np.max(np.abs(fmu[name] - reference[name])) / excursion)
-    return CrossCheck(time, {n: reference[n] for n in COMPARED}, fmu, errors)
+        scale = excursion if excursion > 0 else max(np.max(np.abs(reference[name])), 1e-300)
+        errors[name] = float(np.max(np.abs(fmu[name] - reference[name])) / scale)
+    return CrossCheck(time, {n: reference[n] for n in compared}, fmu, errors)

@@ -1,9 +1,15 @@
 /* FMI 2.0 Model Exchange wrapper around CasADi-generated code (loader_model.fmu).
  *
- * fmu_config.h (written by loader_model.fmu.build) defines MODEL_GUID and the sizes N_P, N_IN,
- * N_X, N_Y; fmu_model.h (CasADi CodeGenerator) declares fmu_ode(x, in, p) -> (xdot, y) and
- * fmu_start(p) -> (x0). Every Real lives in one array r[] indexed by its value reference:
- * parameters, inputs, states, derivatives, outputs (loader_model/fmu/variables.py).
+ * fmu_config.h (written by loader_model.fmu.build) defines MODEL_GUID and the sizes N_P, N_SET,
+ * N_IN, N_X, N_Y, N_Z; fmu_model.h (CasADi CodeGenerator) declares fmu_ode(x, in, p) -> (xdot, y)
+ * and fmu_start(p) -> (x0). Every Real lives in one array r[] indexed by its value reference:
+ * plant parameters, controller parameters, inputs, states, derivatives, outputs, controller
+ * states (loader_model/fmu/variables.py, closed_loop.py).
+ *
+ * With CLOSED_LOOP defined, r[VR_IN] is the held pump command, an output: at every sample
+ * t0 + k T_s the FMU asks for a time event and fmu_sample(x, in, p, z) -> (z_next, u) updates
+ * the controller's states and the command; fmu_ctrl_init(x, in, p) -> z0 starts the controller
+ * at its fixed point (loader_model/fmu/closed_loop.py).
  */
 #include <stdlib.h>
 #include <string.h>
@@ -12,11 +18,12 @@
 #include "fmu_config.h"
 #include "fmu_model.h"
 
-#define VR_IN (N_P)
+#define VR_IN (N_P + N_SET)
 #define VR_X (VR_IN + N_IN)
 #define VR_DX (VR_X + N_X)
 #define VR_Y (VR_DX + N_X)
-#define N_R (VR_Y + N_Y)
+#define VR_Z (VR_Y + N_Y)
+#define N_R (VR_Z + N_Z)
 
 typedef enum { INSTANTIATED, INITIALIZATION, EVENT, CONTINUOUS, TERMINATED } Mode;
 
@@ -26,6 +33,10 @@ typedef struct {
     fmi2Boolean start_at_equilibrium;
     fmi2Boolean dirty;
     fmi2Real time;
+    fmi2Real start_time;
+    long samples; /* samples taken since start_time */
+    double z_next[N_Z + 1];
+    double command;
     Mode mode;
     fmi2CallbackFunctions callbacks;
     char *name;
@@ -71,6 +82,48 @@ static fmi2Status equilibrium(Instance *m) {
     return fmi2OK;
 }
 
+#ifdef CLOSED_LOOP
+/* One controller sample at the current time: z <- z_next, held command <- u. */
+static fmi2Status sample(Instance *m) {
+    m->arg[0] = m->r + VR_X;
+    m->arg[1] = m->r + VR_IN;
+    m->arg[2] = m->r;
+    m->arg[3] = m->r + VR_Z;
+    m->res[0] = m->z_next;
+    m->res[1] = &m->command;
+    if (fmu_sample(m->arg, m->res, m->iw, m->w, 0)) {
+        log_error(m, "controller sample failed");
+        return fmi2Error;
+    }
+    memcpy(m->r + VR_Z, m->z_next, N_Z * sizeof(double));
+    m->r[VR_IN] = m->command;
+    m->samples++;
+    m->dirty = fmi2True;
+    return fmi2OK;
+}
+
+static fmi2Status start_controller(Instance *m) {
+    if (!(m->r[VR_TS] > 0.0)) {
+        log_error(m, "controller.T_s must be > 0");
+        return fmi2Error;
+    }
+    m->arg[0] = m->r + VR_X;
+    m->arg[1] = m->r + VR_IN;
+    m->arg[2] = m->r;
+    m->res[0] = m->r + VR_Z;
+    if (fmu_ctrl_init(m->arg, m->res, m->iw, m->w, 0)) {
+        log_error(m, "controller start failed");
+        return fmi2Error;
+    }
+    m->samples = 0;
+    return sample(m); /* the sample at the start time */
+}
+
+static double next_sample_time(const Instance *m) {
+    return m->start_time + (double)m->samples * m->r[VR_TS];
+}
+#endif
+
 const char *fmi2GetTypesPlatform(void) { return fmi2TypesPlatform; }
 const char *fmi2GetVersion(void) { return fmi2Version; }
 
@@ -91,13 +144,22 @@ fmi2Component fmi2Instantiate(fmi2String name, fmi2Type type, fmi2String guid,
     }
     Instance *m = calloc(1, sizeof(Instance));
     if (!m) return NULL;
-    casadi_int n_arg, n_res, n_iw, n_w, a2, r2, iw2, w2;
-    fmu_ode_work(&n_arg, &n_res, &n_iw, &n_w);
-    fmu_start_work(&a2, &r2, &iw2, &w2);
-    if (a2 > n_arg) n_arg = a2;
-    if (r2 > n_res) n_res = r2;
-    if (iw2 > n_iw) n_iw = iw2;
-    if (w2 > n_w) n_w = w2;
+    casadi_int n_arg = 0, n_res = 0, n_iw = 0, n_w = 0, sizes[4][4];
+    fmu_ode_work(&sizes[0][0], &sizes[0][1], &sizes[0][2], &sizes[0][3]);
+    fmu_start_work(&sizes[1][0], &sizes[1][1], &sizes[1][2], &sizes[1][3]);
+#ifdef CLOSED_LOOP
+    fmu_sample_work(&sizes[2][0], &sizes[2][1], &sizes[2][2], &sizes[2][3]);
+    fmu_ctrl_init_work(&sizes[3][0], &sizes[3][1], &sizes[3][2], &sizes[3][3]);
+    int n_functions = 4;
+#else
+    int n_functions = 2;
+#endif
+    for (int i = 0; i < n_functions; i++) {
+        if (sizes[i][0] > n_arg) n_arg = sizes[i][0];
+        if (sizes[i][1] > n_res) n_res = sizes[i][1];
+        if (sizes[i][2] > n_iw) n_iw = sizes[i][2];
+        if (sizes[i][3] > n_w) n_w = sizes[i][3];
+    }
     m->arg = calloc(n_arg + 1, sizeof(casadi_real *));
     m->res = calloc(n_res + 1, sizeof(casadi_real *));
     m->iw = calloc(n_iw + 1, sizeof(casadi_int));
@@ -127,6 +189,7 @@ fmi2Status fmi2SetupExperiment(fmi2Component c, fmi2Boolean tolerance_defined, f
                                fmi2Real start, fmi2Boolean stop_defined, fmi2Real stop) {
     (void)tolerance_defined; (void)tolerance; (void)stop_defined; (void)stop;
     ((Instance *)c)->time = start;
+    ((Instance *)c)->start_time = start;
     return fmi2OK;
 }
 
@@ -139,6 +202,9 @@ fmi2Status fmi2EnterInitializationMode(fmi2Component c) {
 fmi2Status fmi2ExitInitializationMode(fmi2Component c) {
     Instance *m = c;
     fmi2Status status = equilibrium(m);
+#ifdef CLOSED_LOOP
+    if (status == fmi2OK) status = start_controller(m);
+#endif
     m->mode = EVENT;
     return status;
 }
@@ -168,6 +234,9 @@ fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t n,
                        const fmi2Real v[]) {
     Instance *m = c;
     for (size_t i = 0; i < n; i++) {
+#ifdef CLOSED_LOOP
+        if (vr[i] == VR_IN) { log_error(m, "V_p_ref is the controller's output"); return fmi2Error; }
+#endif
         if (vr[i] >= VR_DX) { log_error(m, "Real value reference cannot be set"); return fmi2Error; }
         if (vr[i] < VR_IN && m->mode != INSTANTIATED && m->mode != INITIALIZATION) {
             log_error(m, "parameters are fixed after initialization");
@@ -245,13 +314,21 @@ fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReferenc
 fmi2Status fmi2EnterEventMode(fmi2Component c) { ((Instance *)c)->mode = EVENT; return fmi2OK; }
 
 fmi2Status fmi2NewDiscreteStates(fmi2Component c, fmi2EventInfo *info) {
-    (void)c;
+    Instance *m = c;
+    (void)m;
     info->newDiscreteStatesNeeded = fmi2False;
     info->terminateSimulation = fmi2False;
     info->nominalsOfContinuousStatesChanged = fmi2False;
     info->valuesOfContinuousStatesChanged = fmi2False;
     info->nextEventTimeDefined = fmi2False;
     info->nextEventTime = 0.0;
+#ifdef CLOSED_LOOP
+    /* sample when the time has reached the next sample (to a billionth of the period) */
+    if (m->time >= next_sample_time(m) - 1e-9 * m->r[VR_TS] && sample(m) != fmi2OK)
+        return fmi2Error;
+    info->nextEventTimeDefined = fmi2True;
+    info->nextEventTime = next_sample_time(m);
+#endif
     return fmi2OK;
 }
 

@@ -17,7 +17,7 @@ def _number(value: float) -> str:
     return repr(float(value))
 
 
-def _variable(parent: ET.Element, variable: FmuVariable) -> None:
+def _variable(parent: ET.Element, variable: FmuVariable, index: dict[str, int]) -> None:
     attributes = {
         "name": variable.name,
         "valueReference": str(variable.value_reference),
@@ -31,8 +31,8 @@ def _variable(parent: ET.Element, variable: FmuVariable) -> None:
     real: dict[str, str] = {}
     if variable.unit:
         real["unit"] = variable.unit
-    if variable.derivative is not None:
-        real["derivative"] = str(variable.derivative)
+    if variable.derivative_of is not None:
+        real["derivative"] = str(index[variable.derivative_of])
     if variable.nominal is not None:
         real["nominal"] = _number(variable.nominal)
     if variable.start is not None:
@@ -41,26 +41,34 @@ def _variable(parent: ET.Element, variable: FmuVariable) -> None:
 
 
 def model_description_xml(
-    variables: Sequence[FmuVariable], guid: str, description: str, generation_tool: str
+    variables: Sequence[FmuVariable],
+    guid: str,
+    description: str,
+    generation_tool: str,
+    *,
+    model_identifier: str = MODEL_IDENTIFIER,
 ) -> bytes:
     """The modelDescription.xml (UTF-8 bytes) of a Model Exchange FMU with these Real variables.
 
     Parameters
     ----------
     variables : sequence of FmuVariable
-        Every Real variable in value-reference order (:func:`~loader_model.fmu.variables.
+        Every Real variable, value references 0, 1, ... in this order (:func:`~loader_model.fmu.variables.
         fmu_variables`); the Boolean ``start_at_equilibrium`` is appended after them.
     guid : str
         The GUID the wrapper checks in ``fmi2Instantiate``.
     description, generation_tool : str
         Free text for the root element.
+    model_identifier : str
+        Name of the shared library, and the model's name.
     """
-    states = [v for v in variables if v.derivative is not None]
+    states = [v for v in variables if v.derivative_of is not None]
+    index = {v.name: i + 1 for i, v in enumerate(variables)}  # 1-based, as ModelStructure counts
     root = ET.Element(
         "fmiModelDescription",
         {
             "fmiVersion": "2.0",
-            "modelName": "loader_plant",
+            "modelName": model_identifier,
             "guid": guid,
             "description": description,
             "generationTool": generation_tool,
@@ -72,7 +80,7 @@ def model_description_xml(
         root,
         "ModelExchange",
         {
-            "modelIdentifier": MODEL_IDENTIFIER,
+            "modelIdentifier": model_identifier,
             "canNotUseMemoryManagementFunctions": "true",
             "canGetAndSetFMUstate": "false",
         },
@@ -85,7 +93,7 @@ def model_description_xml(
     )
     model_variables = ET.SubElement(root, "ModelVariables")
     for variable in variables:
-        _variable(model_variables, variable)
+        _variable(model_variables, variable, index)
     flag = ET.SubElement(
         model_variables,
         "ScalarVariable",
@@ -102,18 +110,20 @@ def model_description_xml(
         },
     )
     ET.SubElement(flag, "Boolean", {"start": "true"})
-    index = {v.value_reference: i + 1 for i, v in enumerate(variables)}
     structure = ET.SubElement(root, "ModelStructure")
     outputs = ET.SubElement(structure, "Outputs")
     for variable in variables:
         if variable.causality == "output":
-            ET.SubElement(outputs, "Unknown", {"index": str(index[variable.value_reference])})
+            ET.SubElement(outputs, "Unknown", {"index": str(index[variable.name])})
     derivatives = ET.SubElement(structure, "Derivatives")
     for variable in states:
-        ET.SubElement(derivatives, "Unknown", {"index": str(index[variable.value_reference])})
+        ET.SubElement(derivatives, "Unknown", {"index": str(index[variable.name])})
     initial = ET.SubElement(structure, "InitialUnknowns")
     for variable in variables:
-        if variable.causality in ("output", "local"):  # states (approx), derivatives, outputs
-            ET.SubElement(initial, "Unknown", {"index": str(index[variable.value_reference])})
+        # outputs, states (initial approx) and derivatives; not the controller's discrete states
+        if variable.causality == "output" or (
+            variable.causality == "local" and variable.variability == "continuous"
+        ):
+            ET.SubElement(initial, "Unknown", {"index": str(index[variable.name])})
     ET.indent(root)
     return ET.tostring(root, encoding="UTF-8", xml_declaration=True) + b"\n"

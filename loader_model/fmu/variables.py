@@ -124,8 +124,8 @@ class FmuVariable:
         Unit (empty: dimensionless) and one line.
     start : float or None
         Start value, written when not None.
-    derivative : int or None
-        For a derivative: 1-based index of its state in ``ModelVariables``.
+    derivative_of : str or None
+        For a derivative: the name of its state.
     nominal : float or None
         Nominal magnitude of a state.
     """
@@ -138,7 +138,7 @@ class FmuVariable:
     unit: str
     description: str
     start: float | None = None
-    derivative: int | None = None
+    derivative_of: str | None = None
     nominal: float | None = None
 
 
@@ -225,7 +225,6 @@ def fmu_variables(params: np.ndarray, x0: np.ndarray, u0: float) -> list[FmuVari
                 0.0,
             )
         )
-    first_state = len(out)
     nominals = state_nominals(x0, params)
     for i, name in enumerate(STATE_NAMES):
         description = _STATE_DESCRIPTIONS.get(name) or f"rate of {name.replace('d', '', 1)}"
@@ -242,7 +241,7 @@ def fmu_variables(params: np.ndarray, x0: np.ndarray, u0: float) -> list[FmuVari
                 nominal=float(nominals[i]),
             )
         )
-    for i, name in enumerate(STATE_NAMES):
+    for name in STATE_NAMES:
         unit = _STATE_UNITS[name]
         out.append(
             FmuVariable(
@@ -253,7 +252,7 @@ def fmu_variables(params: np.ndarray, x0: np.ndarray, u0: float) -> list[FmuVari
                 "calculated",
                 f"{unit}/s" if "/" not in unit else f"({unit})/s",
                 f"time derivative of x.{name}",
-                derivative=first_state + i + 1,
+                derivative_of=f"x.{name}",
             )
         )
     for name in OUTPUT_NAMES:
