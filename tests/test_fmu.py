@@ -22,6 +22,7 @@ from loader_model.plant.plant_parameters import (
 )
 
 fmpy = pytest.importorskip("fmpy")
+validate_fmu = pytest.importorskip("fmpy.validation").validate_fmu
 
 #: Acceptance tolerance of the cross-check (issue 15): relative to each signal's excursion.
 CROSS_CHECK_RTOL = 1e-3
@@ -69,7 +70,7 @@ def test_model_description_names_units_causality_and_start_values(
 
 
 def test_fmu_validates_and_holds_its_equilibrium(plant_fmu: Path) -> None:
-    assert fmpy.validation.validate_fmu(str(plant_fmu)) == []
+    assert validate_fmu(str(plant_fmu)) == []
     with zipfile.ZipFile(plant_fmu) as archive:
         assert f"binaries/linux64/{MODEL_IDENTIFIER}.so" in archive.namelist()
     result = fmpy.simulate_fmu(str(plant_fmu), stop_time=0.2, output=["f_Sy", "p_A", "phi"])
@@ -121,7 +122,7 @@ def test_closed_loop_fmu_reproduces_the_sampled_loop(
     path = build.export_plant_fmu(
         tmp_path / "loop.fmu", params, controller=controller, settings=settings
     )
-    assert fmpy.validation.validate_fmu(str(path)) == []
+    assert validate_fmu(str(path)) == []
     md = fmpy.read_model_description(str(path))
     command = next(v for v in md.modelVariables if v.name == "V_p_ref")
     assert (command.causality, command.variability) == ("output", "discrete")
