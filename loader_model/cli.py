@@ -21,6 +21,7 @@ COMMANDS: dict[str, str] = {
     "identify": "loader_model.commands.identify_command",
     "reproduce": "loader_model.commands.reproduce_command",
     "simulate": "loader_model.commands.simulate_command",
+    "export-fmu": "loader_model.commands.export_fmu_command",
 }
 
 

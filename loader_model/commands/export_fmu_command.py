@@ -1,0 +1,82 @@
+"""Export the nonlinear plant as an FMI 2.0 Model Exchange FMU (linux64; needs a C compiler).
+
+Inputs: the pump displacement command V_p_ref and the road under each axle with its rates (and the
+disturbance forces at H); outputs: seat and chassis accelerometers, pressures, boom angle, chassis
+motion, tyre loads; every plant parameter is an FMU parameter with unit and description; the
+states start at the static equilibrium. ``--controller`` closes the loop inside the FMU with one
+of the project's discrete 1 kHz controllers, kept discrete and sampled by FMI time events (not a
+continuous equivalent; see :mod:`loader_model.fmu.closed_loop`): the pump command is then an
+output and the controller's settings (Table 3, the shipped defaults) are FMU parameters.
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+
+from loader_model.commands.common import add_model_arguments
+
+HELP = "export the nonlinear plant as an FMI 2.0 Model Exchange FMU"
+
+#: ``--controller`` choice -> controller Function name (None: the plant alone).
+CONTROLLER_CHOICES = {
+    "none": None,
+    "baseline": "baseline",
+    "skyhook": "skyhook",
+    "virtual-accumulator": "virtual_accumulator",
+}
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add ``--params``, ``--load``, ``--controller``, ``--no-sources`` and ``OUTPUT.fmu``."""
+    add_model_arguments(parser)
+    parser.add_argument(
+        "--controller",
+        choices=list(CONTROLLER_CHOICES),
+        default="none",
+        help="close the loop inside the FMU with this 1 kHz controller (default: none, the plant)",
+    )
+    parser.add_argument(
+        "--no-sources",
+        action="store_true",
+        help="leave the C sources out of the FMU (binary only)",
+    )
+    parser.add_argument("output", metavar="OUTPUT.fmu", help="FMU file to write")
+
+
+def run(args: argparse.Namespace) -> int:
+    """Check the arguments, build the FMU in a temporary folder and move it to OUTPUT."""
+    from loader_model.export import check_output_path
+    from loader_model.fmu.build import export_plant_fmu, find_compiler
+
+    check_output_path(args.output, (".fmu",), "FMU")  # before any work
+    find_compiler()  # a clear error before the parameter files are read
+    from loader_model.parameters import resolve_loader_and_load
+    from loader_model.plant.plant_parameters import plant_parameter_vector
+
+    loader, load = resolve_loader_and_load(args.params, args.load)
+    params = plant_parameter_vector(loader, load)
+    controller = CONTROLLER_CHOICES[args.controller]
+    settings = None
+    if controller is not None:
+        from loader_model.control.settings import default_settings, settings_vector_for_plant
+
+        settings = settings_vector_for_plant(
+            default_settings(), params, load.pressure_normalisation
+        )
+    started = time.perf_counter()
+    path = export_plant_fmu(
+        args.output,
+        params,
+        controller=controller,
+        settings=settings,
+        include_sources=not args.no_sources,
+    )
+    seconds = time.perf_counter() - started
+    size_kb = path.stat().st_size / 1024
+    what = "plant" if controller is None else f"plant + {args.controller} controller"
+    print(
+        f"wrote {path}: {what}, FMI 2.0 Model Exchange, linux64, {size_kb:.0f} kB, "
+        f"built in {seconds:.1f} s"
+    )
+    return 0
