@@ -52,6 +52,9 @@ def plot_fig13(path: Path) -> Path:
         result = single_obstacle_run(controller, 9.0, settle_s=2.0)
         f_sy = result["f_Sy"]
         axis.plot(result.time_s, f_sy - f_sy[0], style, lw=1.0, label=controller)
+    moving = np.flatnonzero(np.abs(f_sy - f_sy[0]) > 1e-3)
+    if moving.size:
+        axis.set_xlim(result.time_s[moving[0]] - 0.3, result.time_s[-1])
     axis.set_xlabel("time t [s]")
     axis.set_ylabel("seat vertical acceleration [m/s²]")
     axis.set_title("Fig. 13 (model): one 4 cm board at 9 km/h, empty bucket")
