@@ -11,7 +11,7 @@ with or without additional damping"), the block with −1.3, 6.0, 2.5.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
 
 import numpy as np
@@ -78,12 +78,17 @@ def _run_chunk(specs: list[TrialSpec]) -> list[TrialOutcome]:
 
 
 def run_trials(
-    specs: Sequence[TrialSpec], jobs: int = 2, progress: bool = True
+    specs: Sequence[TrialSpec],
+    jobs: int = 2,
+    progress: bool = True,
+    meanwhile: Callable[[], None] | None = None,
 ) -> list[TrialOutcome]:
     """Run ``specs`` on ``jobs`` processes (1: in this process), in the order given.
 
     Trials are batched per (load, controller) so that each worker compiles each controller's
     period once; the results do not depend on ``jobs`` (each trial carries its own seed).
+    ``meanwhile`` runs in this process while the workers simulate (or after the trials, with
+    ``jobs`` = 1), so that the calling process does useful work instead of waiting.
     """
     from tqdm import tqdm
 
@@ -95,7 +100,6 @@ def run_trials(
     batches = [[specs[i] for i in indices] for indices in groups.values()]
     outcomes: dict[TrialSpec, TrialOutcome] = {}
     bar = tqdm(total=len(specs), desc="Table 6 trials", unit="trial", disable=not progress)
-    collect: Callable[[list[TrialOutcome]], None]
 
     def collect(results: list[TrialOutcome]) -> None:
         for outcome in results:
@@ -106,10 +110,15 @@ def run_trials(
         if jobs == 1:
             for batch in batches:
                 collect(_run_chunk(batch))
+            if meanwhile is not None:
+                meanwhile()
         else:
             with ProcessPoolExecutor(max_workers=jobs) as pool:
-                for results in pool.map(_run_chunk, batches):
-                    collect(results)
+                futures = [pool.submit(_run_chunk, batch) for batch in batches]
+                if meanwhile is not None:
+                    meanwhile()
+                for future in as_completed(futures):
+                    collect(future.result())
     finally:
         bar.close()
     return [outcomes[spec] for spec in specs]
