@@ -26,7 +26,11 @@ compiler works, else evaluated by CasADi's SX virtual machine.
 from __future__ import annotations
 
 import math
+import os
+import shutil
+import tempfile
 from collections.abc import Callable
+from multiprocessing import util
 
 import casadi as ca
 
@@ -141,6 +145,23 @@ def period_function(
 
 
 _COMPILED: dict[tuple[str, float, int, bool], tuple[ca.Function, str]] = {}
+_JIT_DIRECTORIES: dict[int, str] = {}
+
+
+def _jit_directory() -> str:
+    """A temporary folder of this process for the JIT's C, object and library files.
+
+    CasADi writes them into the working directory and deletes them only when the Function is
+    destroyed, which a process that exits (or a pool worker, which ends by ``os._exit``) may
+    never do: the files piled up where ``loader-model`` was run. The folder is removed at exit
+    by a multiprocessing finaliser, which runs in pool workers too and only in its own process.
+    """
+    pid = os.getpid()
+    if pid not in _JIT_DIRECTORIES:
+        folder = tempfile.mkdtemp(prefix="loader-model-jit-")
+        util.Finalize(None, shutil.rmtree, args=(folder, True), exitpriority=0)
+        _JIT_DIRECTORIES[pid] = folder
+    return _JIT_DIRECTORIES[pid] + os.sep
 
 
 def compile_period(
@@ -165,7 +186,13 @@ def compile_period(
                     period.call(period.sx_in()),
                     period.name_in(),
                     period.name_out(),
-                    JIT_OPTIONS,
+                    {
+                        **JIT_OPTIONS,
+                        "jit_options": {
+                            **JIT_OPTIONS["jit_options"],  # type: ignore[dict-item]
+                            "directory": _jit_directory(),
+                        },
+                    },
                 )
                 backend = "jit"
             except RuntimeError:  # no working C compiler: interpret the SX graph

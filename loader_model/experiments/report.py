@@ -1,0 +1,129 @@
+"""The reproduction report: a folder with ``report.md``, PNG figures and one CSV per table.
+
+:func:`write_report` builds everything in a temporary folder beside the destination and renames
+it into place only when complete, so a failure (or an interrupt) leaves either the previous report
+or none, never a half-written one.
+"""
+
+from __future__ import annotations
+
+import csv
+import shutil
+import tempfile
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+from loader_model.experiments.table6 import LOAD_LABELS, SPEED_LABELS, Table6Cell
+from loader_model.experiments.tables import Rows
+
+__all__ = ["FIDELITY_POINTS", "ReportOptions", "table6_rows", "write_report", "write_tables"]
+
+#: Table 6 fidelity criterion of issue 13: |model − paper| within this many percentage points.
+FIDELITY_POINTS = 10.0
+
+
+@dataclass(frozen=True)
+class ReportOptions:
+    """What the report runs: trials per cell, base seed, worker processes, progress bar."""
+
+    trials: int = 4
+    seed: int = 0
+    jobs: int = 2
+    progress: bool = True
+    duration_s: float | None = None
+
+
+def table6_rows(cells: list[Table6Cell]) -> Rows:
+    """Table 6 side by side: model change [95 % CI] and Welch p beside the paper's."""
+    rows: Rows = [
+        [
+            "speed",
+            "load",
+            "controller",
+            "model Δ [%]",
+            "95 % CI [%]",
+            "model p",
+            "paper Δ [%]",
+            "paper p",
+            "|Δ−Δ_paper| [pp]",
+        ]
+    ]
+    for c in cells:
+        rows.append(
+            [
+                f"{SPEED_LABELS.get(c.speed_kmh, '?')} ({c.speed_kmh:g} km/h)",
+                f"{LOAD_LABELS.get(c.load, '?')} ({c.load})",
+                c.controller,
+                f"{c.model.change_percent:+.1f}",
+                f"[{c.model.low_percent:+.1f}, {c.model.high_percent:+.1f}]",
+                f"{c.model.p_value:.4f}",
+                f"{c.paper_change_percent:+.1f}",
+                f"{c.paper_p_value:.4f}",
+                f"{c.within:.1f}",
+            ]
+        )
+    return rows
+
+
+def markdown_table(rows: Rows) -> str:
+    """``rows`` (header first) as a GitHub Markdown table."""
+    lines = ["| " + " | ".join(rows[0]) + " |", "|" + "---|" * len(rows[0])]
+    lines += [
+        "| " + " | ".join(cell.replace("|", "\\|") for cell in row) + " |" for row in rows[1:]
+    ]
+    return "\n".join(lines)
+
+
+def write_tables(folder: Path, tables: dict[str, Rows]) -> None:
+    """One CSV per table, named ``<key>.csv``."""
+    for name, rows in tables.items():
+        with open(folder / f"{name}.csv", "w", newline="", encoding="utf-8") as handle:
+            csv.writer(handle).writerows(rows)
+
+
+def _replace_folder(built: Path, destination: Path) -> None:
+    """Move ``built`` to ``destination``; an existing report is swapped out, then removed."""
+    old = None
+    if destination.exists():
+        old = destination.with_name(f".{destination.name}.old-{time.time_ns()}")
+        destination.rename(old)
+    try:
+        built.rename(destination)
+    except BaseException:
+        if old is not None:
+            old.rename(destination)
+        raise
+    if old is not None:
+        shutil.rmtree(old, ignore_errors=True)
+
+
+def write_report(destination: str | Path, build: Callable[[Path], None]) -> Path:
+    """Run ``build(folder)`` in a temporary folder beside ``destination`` and rename it into place.
+
+    Parameters
+    ----------
+    destination : str or pathlib.Path
+        The report folder; its parent is created if missing. An existing folder is replaced
+        only once the new one is complete.
+    build : callable
+        Writes the report's files into the folder it is given.
+
+    Returns
+    -------
+    pathlib.Path
+        ``destination``.
+    """
+    destination = Path(destination)
+    if destination.exists() and not destination.is_dir():
+        raise ValueError(f"--output {str(destination)!r} exists and is not a folder")
+    destination.parent.mkdir(parents=True, exist_ok=True)
+    temporary = Path(tempfile.mkdtemp(prefix=f".{destination.name}.tmp-", dir=destination.parent))
+    try:
+        build(temporary)
+        _replace_folder(temporary, destination)
+    except BaseException:
+        shutil.rmtree(temporary, ignore_errors=True)
+        raise
+    return destination

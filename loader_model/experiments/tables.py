@@ -1,0 +1,161 @@
+"""The report's tables other than Table 6, each a list of rows (header first).
+
+- Table 1: undamped modes of the default loader (Eq. 27-29) beside the paper's, both loads.
+- Eq. 43: poles, zeros and DC gain of the detailed pressure loop beside the reduced-order one.
+- Tables 4 and 5: friction and leakage identified from a synthetic lift-test record (seed 0)
+  of the hydraulic plant, whose true values are Tables 4 and 5 themselves.
+- Gains: Table 3 (the shipped skyhook settings); the comfort-optimised gain is a placeholder
+  when :mod:`loader_model.control.comfort_design` is not available.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+__all__ = ["Rows", "gain_rows", "identification_rows", "pressure_loop_rows", "table1_rows"]
+
+#: A table: header row then data rows, all strings.
+Rows = list[list[str]]
+
+
+def table1_rows() -> Rows:
+    """Table 1 beside the model: frequency per mode and MAC of M·φ (errata 7), both loads."""
+    from loader_model.modal import compare_with_table_1, modal_analysis
+    from loader_model.parameters import LOAD_CASES, bucket_load, default_loader
+    from loader_model.undamped import undamped_matrices
+
+    rows: Rows = [["load", "mode", "model f [Hz]", "paper f [Hz]", "error [%]", "MAC M·φ"]]
+    loader = default_loader()
+    for case in LOAD_CASES:
+        matrices = undamped_matrices(loader, bucket_load(case))
+        comparison = compare_with_table_1(modal_analysis(matrices.mass, matrices.stiffness))
+        for k in range(comparison.frequencies_hz.size):
+            rows.append(
+                [
+                    case,
+                    str(k + 1),
+                    f"{comparison.frequencies_hz[k]:.3f}",
+                    f"{comparison.table_frequencies_hz[k]:.2f}",
+                    f"{comparison.frequency_errors_percent[k]:+.2f}",
+                    f"{comparison.mac[k]:.4f}",
+                ]
+            )
+    return rows
+
+
+def _complex(values: np.ndarray) -> str:
+    return ", ".join(
+        f"{v.real:.1f}" + (f"{v.imag:+.1f}j" if abs(v.imag) > 1e-9 else "") for v in values
+    )
+
+
+def pressure_loop_rows(figure: Path | None = None) -> Rows:
+    """The detailed pressure loop (empty bucket) beside Eq. 43; optionally its Bode figure."""
+    from loader_model.parameters import bucket_load, default_loader
+    from loader_model.plant.plant_report import hydraulics_report, plot_pressure_loop
+
+    report = hydraulics_report(default_loader(), bucket_load("empty"))
+    rows: Rows = [["loop", "DC gain", "poles |s| < 500 [rad/s]", "zeros |s| < 500 [rad/s]"]]
+    first = next(iter(report.comparisons.values()))
+    rows.append(
+        [
+            "Eq. 43 (paper)",
+            f"{first.reference_dc_gain:.4f}",
+            _complex(first.reference_poles[np.abs(first.reference_poles) < 500]),
+            _complex(first.reference_zeros),
+        ]
+    )
+    for name, comparison in report.comparisons.items():
+        zeros = comparison.zeros[np.abs(comparison.zeros) < 500]
+        rows.append(
+            [
+                f"model, {name}",
+                f"{comparison.dc_gain:.4f}",
+                _complex(comparison.dominant_poles),
+                _complex(zeros),
+            ]
+        )
+    if figure is not None:
+        plot_pressure_loop(report, figure, "Pressure loop p_A,ref -> p_A: model and Eq. 43")
+    return rows
+
+
+def identification_rows(seed: int = 0) -> tuple[Rows, Rows]:
+    """Tables 4 and 5 recovered from a synthetic lift-test record (module notes)."""
+    from loader_model.identification import (
+        LiftProfile,
+        SensorOptions,
+        identify_friction,
+        identify_leakage,
+        prepare_signals,
+        synthesize,
+    )
+    from loader_model.identification.report import TABLE4_ROWS, TABLE5_ROWS
+    from loader_model.parameters import default_loader
+
+    recording = synthesize(SensorOptions(seed=seed), LiftProfile())
+    signals = prepare_signals(
+        recording.record, default_loader().pump.shaft_speed, cylinder=recording.cylinder
+    )
+    friction = identify_friction(signals, recording.cylinder).fit
+    leakage = identify_leakage(signals, recording.cylinder)
+    header = ["coefficient", "unit", "identified", "95 % interval", "paper"]
+    table4: Rows = [header]
+    for (name, unit, factor, paper), value, low, high in zip(
+        TABLE4_ROWS, friction.values, friction.low, friction.high, strict=True
+    ):
+        table4.append(
+            [
+                name,
+                unit,
+                f"{value * factor:.4g}",
+                f"[{low * factor:.4g}, {high * factor:.4g}]",
+                f"{paper:.4g}",
+            ]
+        )
+    table5: Rows = [header]
+    regression = leakage.regression
+    for name, unit, factor, paper in TABLE5_ROWS:
+        if name == "K_oil":
+            value, (low, high) = leakage.bulk_modulus, leakage.bulk_modulus_interval
+        else:
+            index = regression.names.index(name)
+            value, low, high = (
+                regression.values[index],
+                regression.low[index],
+                regression.high[index],
+            )
+        table5.append(
+            [
+                name,
+                unit,
+                f"{value * factor:.4g}",
+                f"[{low * factor:.4g}, {high * factor:.4g}]",
+                f"{paper:.4g}",
+            ]
+        )
+    return table4, table5
+
+
+def gain_rows() -> Rows:
+    """Skyhook gains on normalised (ẋ_H, ẏ_H, θ̇1, φ): Table 3 and the comfort design."""
+    from loader_model.control.settings import default_settings
+
+    rows: Rows = [["gain set", "k_ẋ", "k_ẏ", "k_θ̇", "k_φ", "source"]]
+    rows.append(["Table 3 (used)", *(f"{k:g}" for k in default_settings().k_fb), "paper"])
+    rows.append(
+        ["output-feedback LQR", "-", "-", "-", "-", "not computed (Q, R of the paper unknown)"]
+    )
+    comfort: Any = None
+    try:
+        import importlib
+
+        comfort = importlib.import_module("loader_model.control.comfort_design")
+    except ImportError:
+        comfort = None
+    note = "module present; not wired into the report yet" if comfort else "not available yet"
+    rows.append(["comfort design (CasADi)", "-", "-", "-", "-", note])
+    return rows

@@ -1,0 +1,117 @@
+"""The Table 6 experiment: statistics against scipy, seeded trials, a short run, the report folder."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy import stats
+
+from loader_model.cli import main
+from loader_model.experiments.report import write_report
+from loader_model.experiments.statistics import compare_with_baseline, mean_interval
+from loader_model.experiments.table6 import run_trials, table6_cells
+from loader_model.experiments.trials import (
+    SPEED_LIMIT_FRACTION,
+    run_trial,
+    trial_specs,
+)
+
+BASE = [4.1, 3.9, 4.0, 4.2]
+TREATED = [3.0, 3.3, 2.9, 3.1]
+
+
+def test_welch_comparison_matches_scipy() -> None:
+    comparison = compare_with_baseline(BASE, TREATED)
+    reference = stats.ttest_ind(TREATED, BASE, equal_var=False)
+    assert comparison.p_value == pytest.approx(reference.pvalue, rel=1e-12)
+    interval = reference.confidence_interval(0.95)
+    scale = 100.0 / np.mean(BASE)
+    assert comparison.low_percent == pytest.approx(interval.low * scale, rel=1e-10)
+    assert comparison.high_percent == pytest.approx(interval.high * scale, rel=1e-10)
+    assert comparison.change_percent == pytest.approx(
+        100.0 * (np.mean(TREATED) / np.mean(BASE) - 1.0), rel=1e-12
+    )
+
+
+def test_mean_interval_matches_scipy() -> None:
+    mean, low, high = mean_interval(BASE)
+    reference = stats.t.interval(0.95, len(BASE) - 1, np.mean(BASE), stats.sem(BASE))
+    assert mean == pytest.approx(np.mean(BASE), rel=1e-12)
+    assert (low, high) == pytest.approx(reference, rel=1e-12)
+
+
+def test_too_few_trials_is_a_value_error() -> None:
+    with pytest.raises(ValueError, match="at least 2"):
+        compare_with_baseline([4.0], TREATED)
+
+
+def test_trials_are_reproducible_from_the_seed() -> None:
+    first, again, other = trial_specs(3, 4), trial_specs(3, 4), trial_specs(4, 4)
+    assert first == again
+    assert first != other
+    assert len(first) == 2 * 2 * 4 * 4
+    factors = np.array([s.speed_factor for s in first])
+    assert np.all(np.abs(factors - 1.0) <= SPEED_LIMIT_FRACTION + 1e-15)
+    assert len({s.course_seed for s in first}) == len(first)
+    # a trial's draw does not depend on which other factors are run
+    subset = trial_specs(3, 4, controllers=("baseline", "skyhook"))
+    assert [s for s in first if s.controller in ("baseline", "skyhook")] == subset
+
+
+@pytest.mark.parametrize("bad", [-1, 1.5, True])
+def test_bad_seed_is_a_value_error(bad: object) -> None:
+    with pytest.raises(ValueError, match="seed"):
+        trial_specs(bad, 1)  # type: ignore[arg-type]
+
+
+def test_small_experiment_runs_and_is_deterministic() -> None:
+    specs = trial_specs(
+        0,
+        2,
+        speeds_kmh=(9.0,),
+        loads=("empty",),
+        controllers=("baseline", "passive"),
+        duration_s=3.0,
+    )
+    outcomes = run_trials(specs, jobs=1, progress=False)
+    assert [o.spec for o in outcomes] == specs
+    assert all(np.isfinite(o.a_total_m_s2) and o.a_total_m_s2 > 0 for o in outcomes)
+    (cell,) = table6_cells(outcomes)
+    assert cell.controller == "passive"
+    assert cell.paper_change_percent == pytest.approx(-26.4)
+    assert run_trial(specs[0]).a_total_m_s2 == pytest.approx(outcomes[0].a_total_m_s2, rel=1e-12)
+
+
+def test_report_folder_is_replaced_only_when_complete(tmp_path: Path) -> None:
+    target = tmp_path / "results" / "report"
+
+    def good(folder: Path) -> None:
+        (folder / "report.md").write_text("complete\n")
+
+    def failing(folder: Path) -> None:
+        (folder / "report.md").write_text("half")
+        raise RuntimeError("simulated failure")
+
+    with pytest.raises(RuntimeError):
+        write_report(target, failing)
+    assert not target.exists()
+    assert list(target.parent.iterdir()) == []
+    write_report(target, good)
+    with pytest.raises(RuntimeError):
+        write_report(target, failing)
+    assert (target / "report.md").read_text() == "complete\n"
+    assert [p.name for p in target.parent.iterdir()] == ["report"]
+
+
+def test_report_on_a_file_is_a_value_error(tmp_path: Path) -> None:
+    path = tmp_path / "report"
+    path.write_text("x")
+    with pytest.raises(ValueError, match="not a folder"):
+        write_report(path, lambda folder: None)
+
+
+def test_reproduce_rejects_one_trial(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["reproduce", "--trials", "1"]) == 2
+    assert "--trials" in capsys.readouterr().err
