@@ -20,6 +20,7 @@ COMMANDS: dict[str, str] = {
     "hydraulics": "loader_model.commands.hydraulics_command",
     "identify": "loader_model.commands.identify_command",
     "reproduce": "loader_model.commands.reproduce_command",
+    "design": "loader_model.commands.design_command",
 }
 
 

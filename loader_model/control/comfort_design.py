@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 
 from loader_model.control.comfort_plant import (
+    FIXED_STATES,
     MEASURED,
     PERFORMANCE,
     comfort_case,
@@ -31,7 +32,7 @@ from loader_model.control.comfort_plant import (
 )
 from loader_model.control.design_plant import DesignPlant
 from loader_model.control.feasible_descent import balanced_plant, minimise_certified
-from loader_model.control.h2_cost import h2_costs
+from loader_model.control.h2_cost import closed_loop, h2_costs
 
 __all__ = [
     "DEFAULT_MARGIN",
@@ -52,12 +53,19 @@ DEFAULT_MARGIN = 0.1
 
 @dataclass(frozen=True)
 class GainEvaluation:
-    """One gain on one load: a_total [m/s²] (inf if unstable), poles, margin, r.m.s. values."""
+    """One gain on one load: a_total [m/s²] (inf if unstable), poles, margin, r.m.s. values.
+
+    ``poles``: all closed-loop poles; ``loop_poles``: those of the plant and skyhook only (the
+    road and weighting filters are in cascade, their poles do not move with K); ``margin`` is
+    min(−Re) over all poles, ``loop_margin`` over the loop poles, ``min_damping`` over the loop.
+    """
 
     load: str
     a_total: float
     poles: np.ndarray
+    loop_poles: np.ndarray
     margin: float
+    loop_margin: float
     min_damping: float
     v_p_rms: float
     p_a_rms: float
@@ -101,14 +109,18 @@ def evaluate_gain(plants: Sequence[DesignPlant], gain: Any) -> tuple[GainEvaluat
     for plant, cost, poles, e_rms in zip(
         plants, check["costs"], check["poles"], check["e_rms"], strict=True
     ):
-        damping = -poles.real / np.maximum(np.abs(poles), 1e-300)
+        n_loop = plant.A.shape[0] - FIXED_STATES
+        loop = np.linalg.eigvals(closed_loop(plant, gain)[0][:n_loop, :n_loop])
+        damping = -loop.real / np.maximum(np.abs(loop), 1e-300)
         limits = np.asarray(plant.e_rms_limits)
         rows.append(
             GainEvaluation(
                 load=plant.name,
                 a_total=float(np.sqrt(cost / plant.weight)) if np.isfinite(cost) else np.inf,
                 poles=poles,
+                loop_poles=loop,
                 margin=float(-np.max(poles.real)),
+                loop_margin=float(-np.max(loop.real)),
                 min_damping=float(np.min(damping)),
                 v_p_rms=float(e_rms[0]),
                 p_a_rms=float(e_rms[1]),

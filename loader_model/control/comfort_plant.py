@@ -39,6 +39,7 @@ from loader_model.control.settings import (
 )
 
 __all__ = [
+    "FIXED_STATES",
     "GAIN_NAMES",
     "MEASURED",
     "PERFORMANCE",
@@ -59,6 +60,9 @@ PERFORMANCE_K: tuple[tuple[str, str, str, float], ...] = (
 )
 PERFORMANCE: tuple[str, ...] = tuple(p[0] for p in PERFORMANCE_K)
 GAIN_NAMES: tuple[str, ...] = ("k_x", "k_y", "k_theta", "k_phi")
+#: States after the plant and skyhook in :func:`comfort_system` with the independent rear road:
+#: road (2) + W_d (6) + W_k (8) + W_e (6), in cascade with the loop.
+FIXED_STATES = 22
 
 
 @dataclass(frozen=True)

@@ -63,6 +63,21 @@ def balanced_plant(plant: DesignPlant) -> DesignPlant:
     )
 
 
+def _adjoint(
+    plant: DesignPlant,
+    a_c: np.ndarray,
+    p: np.ndarray,
+    kc: np.ndarray,
+    q: np.ndarray,
+    c_cl: np.ndarray,
+    d: np.ndarray,
+    r: np.ndarray,
+) -> np.ndarray:
+    """∂ tr(Q P) / ∂K by the adjoint Lyapunov equation (module docstring)."""
+    lam = solve_continuous_lyapunov(a_c.T, -q)
+    return 2.0 * (r @ kc - plant.B_u.T @ lam - d.T @ c_cl) @ p @ plant.C_y.T
+
+
 def cost_and_gradient(
     plants: Sequence[DesignPlant], gain: np.ndarray, effort: np.ndarray
 ) -> tuple[float, np.ndarray, np.ndarray, np.ndarray]:
@@ -76,18 +91,14 @@ def cost_and_gradient(
         kc = gain @ plant.C_y
         p = solve_continuous_lyapunov(a_c, -plant.B_w @ plant.B_w.T)
 
-        def adjoint(q: np.ndarray, c_cl: np.ndarray, d: np.ndarray, r: np.ndarray) -> np.ndarray:
-            lam = solve_continuous_lyapunov(a_c.T, -q)
-            return 2.0 * (r @ kc - plant.B_u.T @ lam - d.T @ c_cl) @ p @ plant.C_y.T
-
         q = c_z.T @ c_z + kc.T @ effort @ kc
         total += plant.weight * float(np.trace(q @ p))
-        grad += plant.weight * adjoint(q, c_z, plant.D_zu, effort)
+        grad += plant.weight * _adjoint(plant, a_c, p, kc, q, c_z, plant.D_zu, effort)
         zero_r = np.zeros_like(effort)
         for j in range(c_e.shape[0]):
             row, d_row = c_e[j : j + 1], plant.D_eu[j : j + 1]
             variances.append((row @ p @ row.T).item())
-            var_grads.append(adjoint(row.T @ row, row, d_row, zero_r))
+            var_grads.append(_adjoint(plant, a_c, p, kc, row.T @ row, row, d_row, zero_r))
     return total, grad, np.array(variances), np.array(var_grads)
 
 
@@ -139,7 +150,8 @@ def minimise_certified(
     history, status, converged = [j], "max_iterations", False
     g0 = max(float(np.linalg.norm(grad)), 1e-300)
     iteration = 0
-    for iteration in range(1, max_iterations + 1):
+    while iteration < max_iterations:
+        iteration += 1
         if np.linalg.norm(grad) <= gtol * max(g0, 1.0):
             status, converged = "gradient below tolerance", True
             break
