@@ -47,6 +47,7 @@ __all__ = [
     "ComfortCase",
     "comfort_case",
     "comfort_system",
+    "seat_weightings",
     "skyhook_structure",
 ]
 
@@ -142,6 +143,30 @@ def skyhook_structure(case: ComfortCase) -> Any:
     )
 
 
+def seat_weightings() -> list[Any]:
+    """k_i W_i of Eq. 50 as ``StateSpace`` blocks: input the plant output, output ``aw_*``."""
+    import control
+
+    from loader_model.iso2631.weightings import weighting_state_space
+
+    blocks = []
+    for out, signal, weighting, k in PERFORMANCE_K:
+        w = weighting_state_space(weighting, input_name=signal, output_name=out)
+        blocks.append(
+            control.ss(
+                w.A,
+                w.B,
+                k * w.C,
+                k * w.D,
+                inputs=[signal],
+                outputs=[out],
+                states=[f"{out}_{s}" for s in w.state_labels],
+                name=out,
+            )
+        )
+    return blocks
+
+
 def comfort_system(
     case: ComfortCase,
     road_class: str = "C",
@@ -157,27 +182,12 @@ def comfort_system(
     """
     import control
 
-    from loader_model.iso2631.weightings import weighting_state_space
     from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
 
     named = dict(zip(PLANT_PARAMETER_NAMES, case.params, strict=True))
     wheelbase = float(named["A_x"] - named["B_x"])
     road = road_shaping_filter(road_class, speed_m_s, wheelbase, rear, pade_order)
-    weights = []
-    for out, signal, weighting, k in PERFORMANCE_K:
-        w = weighting_state_space(weighting, input_name=signal, output_name=out)
-        weights.append(
-            control.ss(
-                w.A,
-                w.B,
-                k * w.C,
-                k * w.D,
-                inputs=[signal],
-                outputs=[out],
-                states=[f"{out}_{s}" for s in w.state_labels],
-                name=out,
-            )
-        )
+    weights = seat_weightings()
     plant = case.plant.name
     noise = list(road.input_labels)
     extra = [f"{plant}.{n}" for n in ("V_p", "p_A", "thetad_1", "thetadd_1")]
