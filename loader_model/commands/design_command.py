@@ -5,8 +5,6 @@ from __future__ import annotations
 
 import argparse
 
-import numpy as np
-
 HELP = "design the skyhook gains K_fb (LQR or ISO 2631 optimisation); Fig. 12"
 
 
@@ -28,7 +26,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--plot", metavar="FILE.png", default=None, help="write Fig. 12 here")
 
 
-def _row(label: str, gain: np.ndarray, evaluations) -> str:
+def _row(label: str, gain, evaluations) -> str:
+    import numpy as np
+
     gains = " ".join(f"{g:8.3f}" for g in gain.ravel())
     costs = "  ".join(
         f"{e.load}: {'unstable' if not np.isfinite(e.a_total) else f'{e.a_total:.4f}'}"
@@ -40,6 +40,8 @@ def _row(label: str, gain: np.ndarray, evaluations) -> str:
 
 def run(args: argparse.Namespace) -> int:
     """Design, print gains / costs / poles / margins, write the figure atomically."""
+    import numpy as np
+
     from loader_model.export import check_output_path, write_atomically
 
     if args.plot is not None:
