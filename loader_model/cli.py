@@ -22,6 +22,7 @@ COMMANDS: dict[str, str] = {
     "reproduce": "loader_model.commands.reproduce_command",
     "simulate": "loader_model.commands.simulate_command",
     "export-fmu": "loader_model.commands.export_fmu_command",
+    "design": "loader_model.commands.design_command",
 }
 
 

@@ -1,0 +1,128 @@
+"""Ride-comfort gain design (issue 11): K_fb minimising the ISO 2631-1 a_total (Eq. 50) on an
+ISO 8608 road, beside Table 3 and the output-feedback LQR (Eq. 41, 42); writes Fig. 12."""
+
+from __future__ import annotations
+
+import argparse
+
+HELP = "design the skyhook gains K_fb (LQR or ISO 2631 optimisation); Fig. 12"
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add ``--params``, ``--load``, ``--method``, ``--road``, ``--speed``, ``--margin``, ``--plot``."""
+    parser.add_argument("--params", metavar="FILE", default=None, help="loader parameter file")
+    parser.add_argument(
+        "--load",
+        choices=("empty", "full", "both"),
+        default="both",
+        help="bucket load(s) the gains are designed for (default: both, robust gains)",
+    )
+    parser.add_argument("--method", choices=("lqr", "optimise"), default="optimise")
+    parser.add_argument("--road", default="C", metavar="CLASS", help="ISO 8608 class A-H (C)")
+    parser.add_argument("--speed", type=float, default=9.0, metavar="KMH", help="km/h (9)")
+    parser.add_argument(
+        "--margin", type=float, default=0.1, metavar="RAD_S", help="stability margin σ (0.1)"
+    )
+    parser.add_argument("--plot", metavar="FILE.png", default=None, help="write Fig. 12 here")
+
+
+def _row(label: str, gain, evaluations) -> str:
+    import numpy as np
+
+    gains = " ".join(f"{g:8.3f}" for g in gain.ravel())
+    costs = "  ".join(
+        f"{e.load}: {'unstable' if not np.isfinite(e.a_total) else f'{e.a_total:.4f}'}"
+        for e in evaluations
+    )
+    total = sum(e.a_total**2 for e in evaluations)
+    return f"  {label:<22} [{gains}]  a_total {costs}  Σa² {total:.4f}"
+
+
+def run(args: argparse.Namespace) -> int:
+    """Design, print gains / costs / poles / margins, write the figure atomically."""
+    import numpy as np
+
+    from loader_model.export import check_output_path, write_atomically
+
+    if args.plot is not None:
+        check_output_path(args.plot, (".png",), "plot file")  # before any work
+    if not (np.isfinite(args.speed) and 0.36 <= args.speed <= 108):
+        raise ValueError(f"--speed {args.speed!r}: allowed: 0.36 to 108 km/h")
+    if not (np.isfinite(args.margin) and args.margin >= 0):
+        raise ValueError(f"--margin {args.margin!r}: allowed: a number >= 0 (rad/s)")
+    from loader_model.control.comfort_design import (
+        TABLE3_GAIN,
+        comfort_plants,
+        evaluate_gain,
+        lqr_gain,
+        optimise_gain,
+    )
+    from loader_model.control.comfort_plant import comfort_case
+
+    loads = ("empty", "full") if args.load == "both" else (args.load,)
+    params = None
+    if args.params is not None:
+        from loader_model.plant.plant_parameters import plant_parameter_vector
+
+        params = {load: plant_parameter_vector(args.params, load) for load in ("empty", "full")}
+    every = comfort_plants(("empty", "full"), args.road, args.speed, params)
+    design = [p for p in every if p.name in loads]
+    table3 = TABLE3_GAIN
+    flipped = TABLE3_GAIN * np.array([[1.0, 1.0, 1.0, -1.0]])
+    lqr = {p.name: lqr_gain(p).gain for p in design}
+    if args.method == "optimise":
+        result = optimise_gain(design, margin=args.margin)
+        designed, label = result["gain"], "optimised (ISO 2631)"
+        note = f"{result['iterations']} iterations, {result['time_s']:.2f} s, {result['status']}"
+    else:
+        designed = lqr[loads[0]] if len(loads) == 1 else None
+        label, note = "output-feedback LQR", "Q = C_zᵀC_z, R = 1e-2, X0 = B_w B_wᵀ"
+    print(
+        f"Skyhook gains K_fb on (ẋ_H, ẏ_H, θ̇1, φ), road ISO 8608 class {args.road.upper()} at "
+        f"{args.speed:g} km/h, designed for: {', '.join(loads)}; margin σ = {args.margin:g} rad/s"
+    )
+    print("  a_total [m/s²] (Eq. 50, k = 1, 1, 0.4) on both loads:")
+    rows = [("Table 3", table3), ("Table 3, k_φ = +0.22", flipped)]
+    rows += [(f"LQR ({name})", gain) for name, gain in lqr.items()]
+    if designed is not None and args.method == "optimise":
+        rows.append((label, designed))
+    for name, gain in rows:
+        print(_row(name, gain, evaluate_gain(every, gain)))
+    print(f"  {label}: {note}")
+    final = designed if designed is not None else next(iter(lqr.values()))
+    print(
+        "Closed loop with the designed gains (margin over all poles incl. the fixed road and"
+        " ISO filter poles; loop = plant + skyhook: its margin, min damping, slowest 6 poles rad/s):"
+    )
+    for e in evaluate_gain(every, final):
+        slow = sorted(e.loop_poles, key=lambda p: -p.real)[:6]
+        listed = ", ".join(f"{p.real:.3f}{p.imag:+.2f}j" for p in slow)
+        weak = e.loop_poles[np.argmin(-e.loop_poles.real / np.abs(e.loop_poles))]
+        listed += (
+            f"; least damped {weak.real:.3f}{weak.imag:+.2f}j ({abs(weak) / (2 * np.pi):.2f} Hz)"
+        )
+        print(
+            f"  {e.load}: margin {e.margin:.4f} rad/s, loop margin {e.loop_margin:.4f}, "
+            f"min ζ {e.min_damping:.4f}, "
+            f"σ_Vp {e.v_p_rms * 1e6:.3f} cm³/rev, σ_pA {e.p_a_rms / 1e5:.2f} bar, "
+            f"within limits: {e.within_limits}\n    {listed}"
+        )
+    if args.plot is not None:
+        from loader_model.control.comfort_figure import pitch_responses, plot_pitch_responses
+
+        frequency = np.geomspace(0.3, 30.0, 400)
+        gains = {"Table 3 with k_φ = +0.22 (Table 3 unstable)": flipped, label: final}
+        curves = {
+            load: pitch_responses(
+                comfort_case(load, None if params is None else params[load]), gains, frequency
+            )
+            for load in ("empty", "full")
+        }
+        write_atomically(
+            args.plot,
+            lambda path: plot_pitch_responses(path, curves, frequency),
+            (".png",),
+            "plot file",
+        )
+        print(f"wrote {args.plot}")
+    return 0

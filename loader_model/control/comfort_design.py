@@ -1,0 +1,178 @@
+r"""Ride-comfort gain design (issue 11): K_fb minimising a_total² of Eq. 50 over both bucket loads.
+
+Design plant per load (:mod:`~loader_model.control.comfort_plant`): the detailed linearised plant,
+the skyhook's continuous structure with K_fb as the static gain, the ISO 2631-1 weightings on the
+seat outputs and an ISO 8608 road (:mod:`~loader_model.control.road_filter`). The cost is
+
+.. math:: J(K) = \sum_{load} a_{total}^2 = \sum_{load} \| T_{\nu \to (k_x W_d f_{Sx},\,
+          k_y W_k f_{Sy},\, k_\theta W_e \ddot\theta_1)} \|_{H_2}^2,
+
+the mean square of the weighted seat accelerations under the road (Eq. 49, 50), subject to every
+closed-loop pole left of −σ and the r.m.s. limits 3 σ_Vp ≤ V_p,max and 3 σ_pA ≤ ‖p_A‖∞ (the
+pressure norm of the load: 100 / 200 bar) for each load. Minimised by
+:func:`~loader_model.control.feasible_descent.minimise_certified` (every iterate certified).
+Compared with Table 3 and with the output-feedback LQR (Eq. 41, 42) on the same plant, with
+Q = C_zᵀ C_z (the weighted seat outputs), R = ``lqr_effort`` and X0 = B_w B_wᵀ.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from loader_model.control.comfort_plant import (
+    FIXED_STATES,
+    MEASURED,
+    PERFORMANCE,
+    comfort_case,
+    comfort_system,
+)
+from loader_model.control.design_plant import DesignPlant
+from loader_model.control.feasible_descent import balanced_plant, minimise_certified
+from loader_model.control.h2_cost import closed_loop, h2_costs
+
+__all__ = [
+    "DEFAULT_MARGIN",
+    "TABLE3_GAIN",
+    "GainEvaluation",
+    "comfort_plants",
+    "evaluate_gain",
+    "lqr_gain",
+    "optimise_gain",
+]
+
+#: K_fb of Table 3.
+TABLE3_GAIN = np.array([[2.75, 5.10, -4.0, -0.22]])
+#: Required stability margin σ [rad/s]: below the road filter's fixed pole 2π n_1 v (0.17 rad/s
+#: at 9 km/h) and the slow boom pole, a 10 s time constant.
+DEFAULT_MARGIN = 0.1
+
+
+@dataclass(frozen=True)
+class GainEvaluation:
+    """One gain on one load: a_total [m/s²] (inf if unstable), poles, margin, r.m.s. values.
+
+    ``poles``: all closed-loop poles; ``loop_poles``: those of the plant and skyhook only (the
+    road and weighting filters are in cascade, their poles do not move with K); ``margin`` is
+    min(−Re) over all poles, ``loop_margin`` over the loop poles, ``min_damping`` over the loop.
+    """
+
+    load: str
+    a_total: float
+    poles: np.ndarray
+    loop_poles: np.ndarray
+    margin: float
+    loop_margin: float
+    min_damping: float
+    v_p_rms: float
+    p_a_rms: float
+    within_limits: bool
+
+
+def comfort_plants(
+    loads: Sequence[str] = ("empty", "full"),
+    road_class: str = "C",
+    speed_kmh: float = 9.0,
+    params: dict[str, np.ndarray] | None = None,
+) -> tuple[DesignPlant, ...]:
+    """Balanced :class:`DesignPlant` per load with the V_p and p_A r.m.s. limits (3 σ rule)."""
+    from loader_model.parameters import bucket_load
+    from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
+
+    plants = []
+    for load in loads:
+        case = comfort_case(load, None if params is None else params.get(load))
+        system = comfort_system(case, road_class, speed_kmh / 3.6)
+        v_max = float(case.params[PLANT_PARAMETER_NAMES.index("V_p_max")])
+        p_norm = bucket_load(load).pressure_normalisation
+        plant = DesignPlant.from_statespace(
+            system,
+            control=["p_ref_n"],
+            noise=[n for n in system.input_labels if n.startswith("nu_")],
+            measured=list(MEASURED),
+            performance=list(PERFORMANCE),
+            rms_limits={"V_p": v_max / 3.0, "p_A": p_norm / 3.0},
+            name=load,
+        )
+        plants.append(balanced_plant(plant))
+    return tuple(plants)
+
+
+def evaluate_gain(plants: Sequence[DesignPlant], gain: Any) -> tuple[GainEvaluation, ...]:
+    """a_total, poles, margin min(−Re λ), smallest damping ratio and r.m.s. values per plant."""
+    gain = np.atleast_2d(np.asarray(gain, dtype=float))
+    check = h2_costs(plants, gain)
+    rows = []
+    for plant, cost, poles, e_rms in zip(
+        plants, check["costs"], check["poles"], check["e_rms"], strict=True
+    ):
+        n_loop = plant.A.shape[0] - FIXED_STATES
+        loop = np.linalg.eigvals(closed_loop(plant, gain)[0][:n_loop, :n_loop])
+        damping = -loop.real / np.maximum(np.abs(loop), 1e-300)
+        limits = np.asarray(plant.e_rms_limits)
+        rows.append(
+            GainEvaluation(
+                load=plant.name,
+                a_total=float(np.sqrt(cost / plant.weight)) if np.isfinite(cost) else np.inf,
+                poles=poles,
+                loop_poles=loop,
+                margin=float(-np.max(poles.real)),
+                loop_margin=float(-np.max(loop.real)),
+                min_damping=float(np.min(damping)),
+                v_p_rms=float(e_rms[0]),
+                p_a_rms=float(e_rms[1]),
+                within_limits=bool(np.all(e_rms <= limits * (1 + 1e-9))),
+            )
+        )
+    return tuple(rows)
+
+
+def lqr_gain(plant: DesignPlant, effort: float = 1e-2) -> Any:
+    """Output-feedback LQR (Eq. 41, 42) on one design plant: Q = C_zᵀ C_z, R = ``effort``,
+    X0 = B_w B_wᵀ (so J_LQR = ½ (a_total² + R σ_r²)); returns the OutputFeedbackResult."""
+    from loader_model.control.output_feedback import output_feedback_lqr
+
+    return output_feedback_lqr(
+        (plant.A, plant.B_u, plant.C_y),
+        plant.C_z.T @ plant.C_z,
+        np.array([[effort]]),
+        plant.B_w @ plant.B_w.T,
+        gain0=TABLE3_GAIN * np.array([[1.0, 1.0, 1.0, -1.0]]),
+    )
+
+
+def optimise_gain(
+    plants: Sequence[DesignPlant],
+    gain0: Any = None,
+    *,
+    margin: float = DEFAULT_MARGIN,
+    max_iterations: int = 200,
+) -> dict[str, Any]:
+    """Minimise Σ a_total² over ``plants`` with margin σ and the r.m.s. limits.
+
+    ``gain0`` (default Table 3) is first moved to margin 1.5 σ + 0.01 by the phase 1 of
+    :func:`~loader_model.control.h2_design.design_h2_gain` if it misses it, then the r.m.s.
+    limits are checked (ValueError if the start violates them). Returns the dict of
+    :func:`~loader_model.control.feasible_descent.minimise_certified` plus ``start``.
+    """
+    from loader_model.control.h2_design import _reach_margin
+
+    start = TABLE3_GAIN if gain0 is None else np.atleast_2d(np.asarray(gain0, dtype=float))
+    mask = np.ones(start.shape, dtype=bool)
+    start, failure = _reach_margin(plants, start, mask, 1.5 * margin + 0.01)
+    if failure is not None:
+        raise ValueError(
+            f"no start gain meets the margin {margin} rad/s: {failure['return_status']}"
+        )
+    result = minimise_certified(
+        plants,
+        start,
+        mask=mask,
+        effort=np.zeros((1, 1)),
+        margin=margin,
+        max_iterations=max_iterations,
+    )
+    return {**result, "start": start}

@@ -1,0 +1,202 @@
+r"""The ride-comfort design plant: detailed linear plant + skyhook structure + road + ISO weightings.
+
+One model, no stand-in: the plant is :func:`loader_model.plant.linear.linearise_plant` at the
+static equilibrium of the load case, the controller is the linear equivalent of the 1 kHz skyhook
+Function (:func:`loader_model.control.linear_controller.linear_controller`, continuous), opened
+at its static gain. The skyhook law (module :mod:`loader_model.control.controllers`) is
+
+.. math::
+
+    V_{p,ref} = u_{hold} + k_p V_{p,max}\big(r - \mathrm{HP}(p_A)/\|p_A\|\big),
+    \qquad r = p_{A,ref}/\|p_A\| = -K_{fb}\,\hat y,
+
+bilinear in K_fb and the filtered signals ŷ = (semi-integrated normalised f_Hx, f_Hy − g, θ̈1
+estimate; (φ − φ0)/‖φ‖). So the command's Jacobian at gain K is C(K) = C(0) − k_p V_p,max Σ_i K_i c_i
+with c_i the row of ŷ_i, and ŷ_i is read off the same Function: c_i = (C(0) − C(e_i)) / (k_p V_p,max)
+(exact: the law is linear in K). The design plant's control input is r (``p_ref_n``), entering
+V_p,ref with gain k_p V_p,max; its measured outputs are ŷ (``yh_x``, ``yh_y``, ``yh_theta``,
+``yh_phi``); then u = −K y of :func:`~loader_model.control.h2_design.design_h2_gain` is exactly
+r = −K_fb ŷ and K is K_fb.
+
+Performance outputs (Eq. 49, 50): the seat accelerometer's specific force and the pitch
+acceleration through the ISO 2631-1 weightings, k_x W_d f_Sx, k_y W_k f_Sy, k_θ W_e θ̈1 with
+k = (1, 1, 0.4); the sum of their mean squares is a_total². Road: :mod:`road_filter`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cache
+from typing import Any
+
+import numpy as np
+
+from loader_model.control.road_filter import road_shaping_filter
+from loader_model.control.settings import (
+    SETTINGS_NAMES,
+    default_settings,
+    settings_vector_for_plant,
+)
+
+__all__ = [
+    "FIXED_STATES",
+    "GAIN_NAMES",
+    "MEASURED",
+    "PERFORMANCE",
+    "PERFORMANCE_K",
+    "ComfortCase",
+    "comfort_case",
+    "comfort_system",
+    "seat_weightings",
+    "skyhook_structure",
+]
+
+#: Measured outputs ŷ of the design plant (order of K_fb, Eq. 40).
+MEASURED: tuple[str, ...] = ("yh_x", "yh_y", "yh_theta", "yh_phi")
+#: Weighted seat outputs: (name, plant output, ISO weighting, k of Eq. 50).
+PERFORMANCE_K: tuple[tuple[str, str, str, float], ...] = (
+    ("aw_x", "f_Sx", "Wd", 1.0),
+    ("aw_y", "f_Sy", "Wk", 1.0),
+    ("aw_theta", "thetadd_1", "We", 0.4),
+)
+PERFORMANCE: tuple[str, ...] = tuple(p[0] for p in PERFORMANCE_K)
+GAIN_NAMES: tuple[str, ...] = ("k_x", "k_y", "k_theta", "k_phi")
+#: States after the plant and skyhook in :func:`comfort_system` with the independent rear road:
+#: road (2) + W_d (6) + W_k (8) + W_e (6), in cascade with the loop.
+FIXED_STATES = 22
+
+
+@dataclass(frozen=True)
+class ComfortCase:
+    """Linearised plant, settings vector and static sensor readings of one bucket load."""
+
+    load: str
+    params: np.ndarray
+    plant: Any
+    settings: np.ndarray
+    sensors: np.ndarray
+
+
+@cache
+def _cached_case(load: str, params_key: tuple[float, ...] | None) -> ComfortCase:
+    from loader_model.control.sensors import sensor_signals
+    from loader_model.parameters import bucket_load
+    from loader_model.plant.equilibrium import static_state
+    from loader_model.plant.linear import linearise_plant
+    from loader_model.plant.plant import plant_function
+    from loader_model.plant.plant_parameters import plant_parameter_vector
+
+    params = plant_parameter_vector(None, load) if params_key is None else np.array(params_key)
+    x0, u0 = static_state(params)
+    y = np.asarray(plant_function()(x0, u0, np.zeros(11), params)[1]).ravel()
+    settings = settings_vector_for_plant(
+        default_settings(), params, bucket_load(load).pressure_normalisation
+    )
+    plant = linearise_plant(params).state_space(name=f"plant_{load}")
+    return ComfortCase(load, params, plant, settings, sensor_signals(y))
+
+
+def comfort_case(load: str, params: np.ndarray | None = None) -> ComfortCase:
+    """:class:`ComfortCase` of ``load`` (``"empty"`` or ``"full"``), default parameters or ``params``."""
+    if load not in ("empty", "full"):
+        raise ValueError(f"load must be 'empty' or 'full'; got {load!r}")
+    key = None if params is None else tuple(float(v) for v in np.asarray(params).ravel())
+    return _cached_case(load, key)
+
+
+def skyhook_structure(case: ComfortCase) -> Any:
+    """The skyhook's linear equivalent at K_fb = 0 with input ``p_ref_n`` added and ŷ as outputs.
+
+    Inputs: sensor names, then ``p_ref_n``; outputs ``V_p_ref`` then :data:`MEASURED`.
+    """
+    import control
+
+    from loader_model.control.linear_controller import linear_controller
+
+    index = [SETTINGS_NAMES.index(n) for n in GAIN_NAMES]
+    zero = case.settings.copy()
+    zero[index] = 0.0
+    base = linear_controller("skyhook", zero, case.sensors).continuous
+    scale = zero[SETTINGS_NAMES.index("k_p")] * zero[SETTINGS_NAMES.index("V_p_max")]
+    rows_c, rows_d = [], []
+    for i in index:
+        unit = zero.copy()
+        unit[i] = 1.0
+        probe = linear_controller("skyhook", unit, case.sensors).continuous
+        rows_c.append((np.asarray(base.C) - np.asarray(probe.C)) / scale)
+        rows_d.append((np.asarray(base.D) - np.asarray(probe.D)) / scale)
+    a, b = np.asarray(base.A), np.asarray(base.B)
+    c = np.vstack([np.asarray(base.C), *rows_c])
+    d = np.vstack([np.asarray(base.D), *rows_d])
+    b = np.hstack([b, np.zeros((a.shape[0], 1))])
+    d = np.hstack([d, np.zeros((d.shape[0], 1))])
+    d[0, -1] = scale
+    return control.ss(
+        a,
+        b,
+        c,
+        d,
+        inputs=[*base.input_labels, "p_ref_n"],
+        outputs=["V_p_ref", *MEASURED],
+        states=list(base.state_labels),
+        name="skyhook_structure",
+    )
+
+
+def seat_weightings() -> list[Any]:
+    """k_i W_i of Eq. 50 as ``StateSpace`` blocks: input the plant output, output ``aw_*``."""
+    import control
+
+    from loader_model.iso2631.weightings import weighting_state_space
+
+    blocks = []
+    for out, signal, weighting, k in PERFORMANCE_K:
+        w = weighting_state_space(weighting, input_name=signal, output_name=out)
+        blocks.append(
+            control.ss(
+                w.A,
+                w.B,
+                k * w.C,
+                k * w.D,
+                inputs=[signal],
+                outputs=[out],
+                states=[f"{out}_{s}" for s in w.state_labels],
+                name=out,
+            )
+        )
+    return blocks
+
+
+def comfort_system(
+    case: ComfortCase,
+    road_class: str = "C",
+    speed_m_s: float = 2.5,
+    rear: str = "independent",
+    pade_order: int = 4,
+) -> Any:
+    """Interconnected ``StateSpace`` of the design (module docstring).
+
+    Inputs: ``p_ref_n`` (control r), ``nu_road`` (unit white noise), ``M_d`` [N·m] (Fig. 12).
+    Outputs: :data:`MEASURED`, :data:`PERFORMANCE`, then ``V_p``, ``p_A``, ``thetad_1``,
+    ``thetadd_1``, ``V_p_ref`` (unweighted, for limits and plots).
+    """
+    import control
+
+    from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
+
+    named = dict(zip(PLANT_PARAMETER_NAMES, case.params, strict=True))
+    wheelbase = float(named["A_x"] - named["B_x"])
+    road = road_shaping_filter(road_class, speed_m_s, wheelbase, rear, pade_order)
+    weights = seat_weightings()
+    plant = case.plant.name
+    noise = list(road.input_labels)
+    extra = [f"{plant}.{n}" for n in ("V_p", "p_A", "thetad_1", "thetadd_1")]
+    return control.interconnect(
+        [case.plant, skyhook_structure(case), road, *weights],
+        inplist=["skyhook_structure.p_ref_n", *(f"road.{n}" for n in noise), f"{plant}.M_d"],
+        inputs=["p_ref_n", *noise, "M_d"],
+        outlist=[*MEASURED, *PERFORMANCE, *extra, "skyhook_structure.V_p_ref"],
+        outputs=[*MEASURED, *PERFORMANCE, "V_p", "p_A", "thetad_1", "thetadd_1", "V_p_ref"],
+        name=f"comfort_{case.load}",
+        check_unused=False,
+    )
