@@ -42,8 +42,8 @@ __all__ = ["JIT_OPTIONS", "compile_period", "lu_solver", "period_function"]
 JIT_OPTIONS: dict[str, object] = {
     "jit": True,
     "compiler": "shell",
-    "jit_options": {"flags": ["-O1"], "verbose": False},
-    "jit_cleanup": True,
+    "jit_options": {"flags": ["-O1"], "verbose": False, "cleanup": False},
+    "jit_cleanup": False,  # the per-process folder is removed as a whole at exit
 }
 
 _GAMMA = 1.0 + 1.0 / math.sqrt(2.0)
