@@ -19,32 +19,21 @@ interpolated linearly inside it (:mod:`~loader_model.simulation.travel`).
 
 One period (:func:`period_function`): y_k = h(x_k, w_k), (z_{k+1}, u_k) = controller(z_k, y_k),
 then ``substeps`` ROS2 steps over the period with u_k held. The carry (x, z, u) rolls over many
-periods with ``mapaccum``; the period is JIT-compiled to C (``"compiler": "shell"``) where a C
-compiler works, else evaluated by CasADi's SX virtual machine.
+periods with ``mapaccum``; the period is compiled to C once per machine where a C compiler works
+(:mod:`~loader_model.simulation.compiled`), else evaluated by CasADi's SX virtual machine.
 """
 
 from __future__ import annotations
 
 import math
-import os
-import shutil
-import tempfile
 from collections.abc import Callable
-from multiprocessing import util
 
 import casadi as ca
 
 from loader_model.plant.plant import EXOGENOUS_NAMES, OUTPUT_NAMES, STATE_NAMES, plant_function
+from loader_model.simulation.compiled import CompilationError, compiled_function
 
-__all__ = ["JIT_OPTIONS", "compile_period", "lu_solver", "period_function"]
-
-#: Options of the JIT-compiled period (``-O1``: compiles in about 0.5 s, runs as fast as -O3).
-JIT_OPTIONS: dict[str, object] = {
-    "jit": True,
-    "compiler": "shell",
-    "jit_options": {"flags": ["-O1"], "verbose": False, "cleanup": False},
-    "jit_cleanup": False,  # the per-process folder is removed as a whole at exit
-}
+__all__ = ["compile_period", "lu_solver", "period_function"]
 
 _GAMMA = 1.0 + 1.0 / math.sqrt(2.0)
 
@@ -145,34 +134,19 @@ def period_function(
 
 
 _COMPILED: dict[tuple[str, float, int, bool], tuple[ca.Function, str]] = {}
-_JIT_DIRECTORIES: dict[int, str] = {}
-
-
-def _jit_directory() -> str:
-    """A temporary folder of this process for the JIT's C, object and library files.
-
-    CasADi writes them into the working directory and deletes them only when the Function is
-    destroyed, which a process that exits (or a pool worker, which ends by ``os._exit``) may
-    never do: the files piled up where ``loader-model`` was run. The folder is removed at exit
-    by a multiprocessing finaliser, which runs in pool workers too and only in its own process.
-    """
-    pid = os.getpid()
-    if pid not in _JIT_DIRECTORIES:
-        folder = tempfile.mkdtemp(prefix="loader-model-jit-")
-        util.Finalize(None, shutil.rmtree, args=(folder, True), exitpriority=0)
-        _JIT_DIRECTORIES[pid] = folder
-    return _JIT_DIRECTORIES[pid] + os.sep
 
 
 def compile_period(
     controller: ca.Function, period_s: float = 1e-3, substeps: int = 1, jit: bool = True
 ) -> tuple[ca.Function, str]:
-    """The period Function, JIT-compiled if ``jit`` and a C compiler works; cached per process.
+    """The period Function, compiled to C if ``jit`` and a C compiler works; cached per process
+    and, compiled, per machine (:mod:`~loader_model.simulation.compiled`).
 
     Returns
     -------
     (casadi.Function, str)
-        The Function and its backend, ``"jit"`` or ``"sx"`` (the fallback when compiling fails).
+        The Function and its backend, ``"jit"`` (compiled C) or ``"sx"`` (the fallback when
+        compiling fails).
     """
     key = (controller.serialize(), float(period_s), int(substeps), bool(jit))
     if key not in _COMPILED:
@@ -180,22 +154,8 @@ def compile_period(
         compiled, backend = period, "sx"
         if jit:
             try:
-                compiled = ca.Function(
-                    "closed_loop_period_jit",
-                    [*period.sx_in()],
-                    period.call(period.sx_in()),
-                    period.name_in(),
-                    period.name_out(),
-                    {
-                        **JIT_OPTIONS,
-                        "jit_options": {
-                            **JIT_OPTIONS["jit_options"],  # type: ignore[dict-item]
-                            "directory": _jit_directory(),
-                        },
-                    },
-                )
-                backend = "jit"
-            except RuntimeError:  # no working C compiler: interpret the SX graph
+                compiled, backend = compiled_function(period), "jit"
+            except CompilationError:  # no working C compiler: interpret the SX graph
                 compiled, backend = period, "sx"
         _COMPILED[key] = (compiled, backend)
     return _COMPILED[key]
