@@ -53,9 +53,10 @@ def discrepancy_section(tables: dict[str, Rows], within: int, count: int, lifts:
         "pole at about +0.05 rad/s caused by k_φ = −0.22 (k_φ ≥ 0 is stable); the paper's sign "
         "convention for φ may differ. Over a 15 s course the drift is invisible in a_total "
         "(item 3: k_φ = ±0.22 and 0 give the same value to 0.1 %).",
-        "5. **Trial-to-trial variation** is only speed (σ 2 %) and board position (σ 50 mm); "
-        "sensor noise (`SensorModel`) is not wired into the compiled 1 kHz loop, and the real "
-        "driver's steering, roll and the left/right board timing are not modelled (planar "
+        "5. **Trial-to-trial variation** is speed (σ 2 %), board position (σ 50 mm) and "
+        "assumed sensor noise (0.033 m/s², 0.05°, 0.4 bar per 1 kHz sample, in the compiled "
+        "loop; the paper gives no sensor data); the real driver's steering, roll and the "
+        "left/right board timing are not modelled (planar "
         "model). The p-values therefore reflect this assumed spread, not the paper's.",
         "6. **Table 4** is not recovered from the plant's synthetic record (known: the chassis "
         "pitches on its tyres, which the record cannot show): the paper's value lies in the "

@@ -17,7 +17,8 @@ to the identity in the mechanical rows; a symbolic QR divides by columns that ar
 at rest and gave NaN). The road input enters as the table samples at the period's ends and is
 interpolated linearly inside it (:mod:`~loader_model.simulation.travel`).
 
-One period (:func:`period_function`): y_k = h(x_k, w_k), (z_{k+1}, u_k) = controller(z_k, y_k),
+One period (:func:`period_function`): y_k = h(x_k, w_k), (z_{k+1}, u_k) = controller(z_k, ỹ_k)
+with ỹ_k the sensors' reading of y_k (offset, noise, quantisation),
 then ``substeps`` ROS2 steps over the period with u_k held. The carry (x, z, u) rolls over many
 periods with ``mapaccum``; the period is compiled to C once per machine where a C compiler works
 (:mod:`~loader_model.simulation.compiled`), else evaluated by CasADi's SX virtual machine.
@@ -30,6 +31,7 @@ from collections.abc import Callable
 
 import casadi as ca
 
+from loader_model.control.sensors import quantise
 from loader_model.plant.plant import EXOGENOUS_NAMES, OUTPUT_NAMES, STATE_NAMES, plant_function
 from loader_model.simulation.compiled import CompilationError, compiled_function
 
@@ -91,10 +93,12 @@ def period_function(
     Returns
     -------
     casadi.Function
-        ``period(carry, w0, w1, params, settings) -> (carry_next, y, u)`` with
+        ``period(carry, w0, w1, params, settings, y_error, y_step) -> (carry_next, y, u)`` with
         carry = (x, z, u_previous), w0, w1 the exogenous input (road, road rate, disturbance;
         :data:`~loader_model.plant.plant.EXOGENOUS_NAMES`) at the period's start and end, y the
-        plant's outputs at its start and u the command held over it.
+        plant's outputs at its start and u the command held over it. The controller reads
+        ``quantise(y + y_error, y_step)`` (:func:`~loader_model.control.sensors.quantise`):
+        the sensors' offset and noise of this period and their converter steps (0: exact).
     """
     plant = plant_function()
     nx, nz = len(STATE_NAMES), controller.size1_in(0)
@@ -104,8 +108,10 @@ def period_function(
     w1 = ca.SX.sym("w1", len(EXOGENOUS_NAMES))
     params = ca.SX.sym("params", plant.size1_in(3))
     settings = ca.SX.sym("settings", controller.size1_in(2))
+    y_error = ca.SX.sym("y_error", len(OUTPUT_NAMES))
+    y_step = ca.SX.sym("y_step", len(OUTPUT_NAMES))
     _, y = plant(x, u_previous, w0, params)  # y does not depend on u (checked in the tests)
-    z_next, u = controller(z, y, settings)
+    z_next, u = controller(z, quantise(y + y_error, y_step), settings)
     step = period_s / substeps
     xs, us, ws = ca.SX.sym("x", nx), ca.SX.sym("u"), ca.SX.sym("w", len(EXOGENOUS_NAMES))
     rate_s = plant(xs, us, ws, params)[0]
@@ -126,9 +132,9 @@ def period_function(
     y_out = outputs[nx + nz + 1 : nx + nz + 1 + len(OUTPUT_NAMES)]
     return ca.Function(
         "closed_loop_period",
-        [carry, w0, w1, params, settings],
+        [carry, w0, w1, params, settings, y_error, y_step],
         [carry_next, y_out, outputs[-1]],
-        ["carry", "w0", "w1", "params", "settings"],
+        ["carry", "w0", "w1", "params", "settings", "y_error", "y_step"],
         ["carry_next", "y", "u"],
     )
 
