@@ -68,6 +68,7 @@ def main() -> int:
     _bench_plant(forward / calls)
     _bench_roads(solve)
     _bench_simulator()
+    _bench_matrix()
     _control_design()
     _comfort_design()
     return 0
@@ -286,8 +287,10 @@ def _bench_simulator() -> None:
     print(f"{'':<42}simulator is {baseline / fast:.0f} x faster (goal >= 8 x)")
 
 
-if __name__ == "__main__":
-    sys.exit(main())
+def _bench_matrix() -> None:
+    from tests.bench_matrix import main as matrix
+
+    matrix()
 
 
 def _comfort_design() -> None:
@@ -322,3 +325,7 @@ def _comfort_design() -> None:
     print(
         f"  Σ a_total² {nelder.fun:.6f} in {nelder.nfev} evaluations, gain {np.round(nelder.x, 3)}"
     )
+
+
+if __name__ == "__main__":
+    sys.exit(main())
