@@ -9,7 +9,8 @@ HELP = "design the skyhook gains K_fb (LQR or ISO 2631 optimisation); Fig. 12"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add ``--params``, ``--load``, ``--method``, ``--road``, ``--speed``, ``--margin``, ``--plot``."""
+    """Add ``--params``, ``--load``, ``--method``, ``--road``, ``--speed``, ``--margin``,
+    ``--plot`` and ``--output``."""
     parser.add_argument("--params", metavar="FILE", default=None, help="loader parameter file")
     parser.add_argument(
         "--load",
@@ -24,6 +25,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--margin", type=float, default=0.1, metavar="RAD_S", help="stability margin σ (0.1)"
     )
     parser.add_argument("--plot", metavar="FILE.png", default=None, help="write Fig. 12 here")
+    parser.add_argument(
+        "--output",
+        metavar="FILE.toml",
+        default=None,
+        help="write a controller settings file with the designed gains "
+        "(for loader-model simulate --controller FILE.toml)",
+    )
 
 
 def _row(label: str, gain, evaluations) -> str:
@@ -46,6 +54,8 @@ def run(args: argparse.Namespace) -> int:
 
     if args.plot is not None:
         check_output_path(args.plot, (".png",), "plot file")  # before any work
+    if args.output is not None:
+        check_output_path(args.output, (".toml",), "--output")
     if not (np.isfinite(args.speed) and 0.36 <= args.speed <= 108):
         raise ValueError(f"--speed {args.speed!r}: allowed: 0.36 to 108 km/h")
     if not (np.isfinite(args.margin) and args.margin >= 0):
@@ -107,6 +117,23 @@ def run(args: argparse.Namespace) -> int:
             f"σ_Vp {e.v_p_rms * 1e6:.3f} cm³/rev, σ_pA {e.p_a_rms / 1e5:.2f} bar, "
             f"within limits: {e.within_limits}\n    {listed}"
         )
+    if args.output is not None:
+        import datetime
+
+        from loader_model.control.settings import default_settings, save_settings, with_gains
+
+        source = (
+            f"loader-model design --method {args.method} --load {args.load} --road "
+            f"{args.road.upper()} --speed {args.speed:g} --margin {args.margin:g}"
+            f"{'' if args.params is None else f' --params {args.params}'} "
+            f"on {datetime.date.today().isoformat()}"
+        )
+        save_settings(
+            with_gains(default_settings(), final, source),
+            args.output,
+            header="Controller settings with designed skyhook gains (loader-model design).",
+        )
+        print(f"wrote {args.output}")
     if args.plot is not None:
         from loader_model.control.comfort_figure import pitch_responses, plot_pitch_responses
 

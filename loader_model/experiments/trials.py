@@ -30,6 +30,7 @@ import numpy as np
 
 __all__ = [
     "CONTROLLERS",
+    "DESIGNED_CONTROLLERS",
     "LOADS",
     "POSITION_JITTER_M",
     "SPEEDS_KMH",
@@ -48,6 +49,9 @@ SPEEDS_KMH: tuple[float, ...] = (9.0, 18.0)
 LOADS: tuple[str, ...] = ("empty", "full")
 #: The four control conditions of section 5.3, baseline first.
 CONTROLLERS: tuple[str, ...] = ("baseline", "passive", "virtual-accumulator", "skyhook")
+#: The skyhook with designed gains (:mod:`~loader_model.experiments.designed_gains`), run as two
+#: more rows of the matrix; their trials carry the gains in :attr:`TrialSpec.k_fb`.
+DESIGNED_CONTROLLERS: tuple[str, ...] = ("skyhook-lqr", "skyhook-optimised")
 #: Standard deviation of the driven speed as a fraction of the nominal speed (assumed).
 SPEED_STD_FRACTION = 0.02
 #: Largest deviation of the driven speed from the nominal speed, as a fraction (assumed).
@@ -80,6 +84,8 @@ class TrialSpec:
         Seed of the board-position jitter.
     duration_s : float or None
         Simulated time (None: the whole course).
+    k_fb : tuple of 4 float or None
+        Skyhook gains of a designed controller (None: the settings file's, Table 3).
     """
 
     speed_kmh: float
@@ -89,6 +95,7 @@ class TrialSpec:
     speed_factor: float
     course_seed: int
     duration_s: float | None = None
+    k_fb: tuple[float, ...] | None = None
 
 
 @dataclass(frozen=True)
@@ -109,6 +116,7 @@ def trial_specs(
     loads: tuple[str, ...] = LOADS,
     controllers: tuple[str, ...] = CONTROLLERS,
     duration_s: float | None = None,
+    designed: dict[str, tuple[float, ...]] | None = None,
 ) -> list[TrialSpec]:
     """All trials of the experiment, each drawn from its own seed (module notes).
 
@@ -122,6 +130,8 @@ def trial_specs(
         The factors (default: the paper's).
     duration_s : float, optional
         Simulated time of each trial (default: the whole course).
+    designed : dict, optional
+        :data:`DESIGNED_CONTROLLERS` name -> skyhook gains, run after ``controllers``.
 
     Returns
     -------
@@ -132,11 +142,17 @@ def trial_specs(
         raise ValueError(f"seed must be an integer >= 0; got {seed!r}")
     if isinstance(trials, bool) or not isinstance(trials, int | np.integer) or trials < 1:
         raise ValueError(f"trials must be an integer >= 1; got {trials!r}")
+    designed = dict(designed or {})
+    unknown = sorted(set(designed) - set(DESIGNED_CONTROLLERS))
+    if unknown:
+        raise ValueError(f"designed controllers {unknown}; allowed: {list(DESIGNED_CONTROLLERS)}")
+    every = (*CONTROLLERS, *DESIGNED_CONTROLLERS)
     specs = []
     for i, speed in enumerate(speeds_kmh):
         for j, load in enumerate(loads):
-            for k, controller in enumerate(controllers):
-                index = CONTROLLERS.index(controller) if controller in CONTROLLERS else k
+            for k, controller in enumerate((*controllers, *designed)):
+                index = every.index(controller) if controller in every else k
+                gains = designed.get(controller)
                 for trial in range(int(trials)):
                     sequence = np.random.SeedSequence([int(seed), i, j, index, trial])
                     rng = np.random.default_rng(sequence)
@@ -149,7 +165,9 @@ def trial_specs(
                     )
                     course_seed = int(rng.integers(0, 2**31 - 1))
                     specs.append(
-                        TrialSpec(speed, load, controller, trial, factor, course_seed, duration_s)
+                        TrialSpec(
+                            speed, load, controller, trial, factor, course_seed, duration_s, gains
+                        )
                     )
     return specs
 
@@ -167,20 +185,32 @@ def _plant(load: str, accumulator: bool) -> np.ndarray:
     return _PLANTS[key]
 
 
-def controller_arguments(controller: str, load: str, params: np.ndarray) -> dict[str, Any]:
+def controller_arguments(
+    controller: str, load: str, params: np.ndarray, k_fb: tuple[float, ...] | None = None
+) -> dict[str, Any]:
     """Keyword arguments of :func:`~loader_model.simulation.simulator.simulate` for ``controller``
-    (baseline and passive: the pump holds its static command)."""
+    (baseline and passive: the pump holds its static command; the designed controllers: the
+    skyhook with gains ``k_fb``)."""
+    from loader_model.control.settings import default_settings, with_gains
     from loader_model.parameters import bucket_load
     from loader_model.simulation.ride_control import controller_setup, plant_controller
 
-    if controller not in CONTROLLERS:
-        raise ValueError(f"controller {controller!r} is unknown; allowed: {list(CONTROLLERS)}")
+    if controller not in (*CONTROLLERS, *DESIGNED_CONTROLLERS):
+        allowed = [*CONTROLLERS, *DESIGNED_CONTROLLERS]
+        raise ValueError(f"controller {controller!r} is unknown; allowed: {allowed}")
     if controller in ("baseline", "passive"):
         return {}
-    settings, state = controller_setup(controller, params, bucket_load(load).pressure_normalisation)
+    law, settings = controller, None
+    if controller in DESIGNED_CONTROLLERS:
+        if k_fb is None:
+            raise ValueError(f"controller {controller!r} needs its gains k_fb")
+        law, settings = "skyhook", with_gains(default_settings(), k_fb, controller)
+    vector, state = controller_setup(
+        law, params, bucket_load(load).pressure_normalisation, settings=settings
+    )
     return {
-        "controller": plant_controller(controller),
-        "settings": settings,
+        "controller": plant_controller(law),
+        "settings": vector,
         "controller_state": state,
     }
 
@@ -206,7 +236,7 @@ def run_trial(spec: TrialSpec) -> TrialOutcome:
         params,
         sensors=SensorModel(noise_std=TRIAL_SENSOR_NOISE, seed=spec.course_seed),
         duration_s=spec.duration_s,
-        **controller_arguments(spec.controller, spec.load, params),
+        **controller_arguments(spec.controller, spec.load, params, spec.k_fb),
     )
     evaluation = result.seat_evaluation()
     return TrialOutcome(
