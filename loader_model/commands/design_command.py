@@ -18,7 +18,20 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         default="both",
         help="bucket load(s) the gains are designed for (default: both, robust gains)",
     )
-    parser.add_argument("--method", choices=("lqr", "optimise"), default="optimise")
+    parser.add_argument(
+        "--method",
+        choices=("lqr", "optimise", "refine"),
+        default="optimise",
+        help="lqr: output-feedback LQR (Eq. 41, 42); optimise: ISO 2631 a_total on the linear "
+        "plant (default); refine: optimise, then refine on the nonlinear paper course at --speed",
+    )
+    parser.add_argument(
+        "--evaluations",
+        type=int,
+        default=120,
+        metavar="N",
+        help="refine: budget of course evaluations (120)",
+    )
     parser.add_argument("--road", default="C", metavar="CLASS", help="ISO 8608 class A-H (C)")
     parser.add_argument("--speed", type=float, default=9.0, metavar="KMH", help="km/h (9)")
     parser.add_argument(
@@ -46,6 +59,35 @@ def _row(label: str, gain, evaluations) -> str:
     return f"  {label:<22} [{gains}]  a_total {costs}  Σa² {total:.4f}"
 
 
+def _refine(args: argparse.Namespace, start, loads, params):
+    """Refine ``start`` on the nonlinear paper course and print the course a_total before/after."""
+    from loader_model.control.course_refinement import course_cost, refine_on_course
+
+    print(f"Refining on the nonlinear paper course at {args.speed:g} km/h ({', '.join(loads)}):")
+    table3 = course_cost((2.75, 5.10, -4.0, -0.22), loads, args.speed, params)
+    result = refine_on_course(
+        start,
+        loads=loads,
+        speed_kmh=args.speed,
+        margin=args.margin,
+        params=params,
+        max_evaluations=args.evaluations,
+    )
+    for name, totals in (
+        ("Table 3", table3),
+        ("optimised (linear)", result["start_a_total"]),
+        ("refined (course)", result["a_total"]),
+    ):
+        shown = "  ".join(f"{load}: {value:.4f}" for load, value in totals.items())
+        print(f"  {name:<22} course a_total [m/s²]  {shown}")
+    gains = " ".join(f"{g:8.3f}" for g in result["gain"].ravel())
+    print(
+        f"  refined gains [{gains}]  ({result['evaluations']} evaluations, "
+        f"{result['refused']} refused: unstable, failed or outside the settings' range)"
+    )
+    return result["gain"]
+
+
 def run(args: argparse.Namespace) -> int:
     """Design, print gains / costs / poles / margins, write the figure atomically."""
     import numpy as np
@@ -60,6 +102,10 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"--speed {args.speed!r}: allowed: 0.36 to 108 km/h")
     if not (np.isfinite(args.margin) and args.margin >= 0):
         raise ValueError(f"--margin {args.margin!r}: allowed: a number >= 0 (rad/s)")
+    if args.method == "refine" and args.speed not in (9.0, 18.0):
+        raise ValueError(f"--speed {args.speed:g} with --method refine: allowed: 9 or 18 km/h")
+    if args.evaluations < 1:
+        raise ValueError(f"--evaluations {args.evaluations}: allowed: an integer >= 1")
     from loader_model.control.comfort_design import (
         TABLE3_GAIN,
         comfort_plants,
@@ -80,7 +126,7 @@ def run(args: argparse.Namespace) -> int:
     table3 = TABLE3_GAIN
     flipped = TABLE3_GAIN * np.array([[1.0, 1.0, 1.0, -1.0]])
     lqr = {p.name: lqr_gain(p).gain for p in design}
-    if args.method == "optimise":
+    if args.method in ("optimise", "refine"):
         result = optimise_gain(design, margin=args.margin)
         designed, label = result["gain"], "optimised (ISO 2631)"
         note = f"{result['iterations']} iterations, {result['time_s']:.2f} s, {result['status']}"
@@ -94,11 +140,13 @@ def run(args: argparse.Namespace) -> int:
     print("  a_total [m/s²] (Eq. 50, k = 1, 1, 0.4) on both loads:")
     rows = [("Table 3", table3), ("Table 3, k_φ = +0.22", flipped)]
     rows += [(f"LQR ({name})", gain) for name, gain in lqr.items()]
-    if designed is not None and args.method == "optimise":
+    if designed is not None and args.method in ("optimise", "refine"):
         rows.append((label, designed))
     for name, gain in rows:
         print(_row(name, gain, evaluate_gain(every, gain)))
     print(f"  {label}: {note}")
+    if args.method == "refine":
+        designed, label = _refine(args, designed, loads, params), "refined on the course"
     final = designed if designed is not None else next(iter(lqr.values()))
     print(
         "Closed loop with the designed gains (margin over all poles incl. the fixed road and"
