@@ -169,13 +169,14 @@ def simulated_energy_balance(
     result: SimulationResult, road: RoadInput, params: Sequence[float] | np.ndarray
 ) -> EnergyBalance:
     """Balance of a :func:`~loader_model.simulation.simulator.simulate` run, trapezoid over its
-    rows and the final state (module notes); the run must have no disturbance input."""
+    rows and the final state (module notes), with the disturbance the run recorded."""
     params = np.asarray(params, dtype=float).ravel()
     time_s = np.append(result.time_s, 2 * result.time_s[-1] - result.time_s[-2])
     states = np.column_stack([result[name] for name in STATE_NAMES])
     states = np.vstack([states, result.final_state])
     commands = np.append(result["V_p_ref"], result["V_p_ref"][-1])
-    exogenous = exogenous_table(road, time_s)
+    recorded = np.column_stack([result[name] for name in EXOGENOUS_NAMES[8:]])
+    exogenous = exogenous_table(road, time_s, np.vstack([recorded, recorded[-1:]]))
     count = time_s.size
     mapped = energy_function().map(count)
     _, parts, inputs, losses, elastic = (
