@@ -4,7 +4,9 @@ dE/dt by forward AD through the plant's xdot (plus the road displacement's own r
 the input powers minus the losses at any state, input and parameter set, to round-off: a check
 of the stored energy being a true state function of the plant that integrates, independent of
 any integrator. States are drawn wide: tyres off the ground, cylinders in their end stops, relief
-and check valves open, the accumulator empty, cavitating chambers.
+and check valves open, the accumulator empty, cavitating chambers. Measured over 300 seeded states
+of ``_case``: worst |dE/dt − P_net| 2.0e-13 of the largest power; with the textbook p²V/(2K) and
+p Q in place of Ψ and π Q, 1.1e-2 (50 states): the test tells the two apart.
 """
 
 from __future__ import annotations
