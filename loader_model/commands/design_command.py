@@ -85,7 +85,11 @@ def _refine(args: argparse.Namespace, start, loads, params):
         f"  refined gains [{gains}]  ({result['evaluations']} evaluations, "
         f"{result['refused']} refused: unstable, failed or outside the settings' range)"
     )
-    return result["gain"]
+    totals = "/".join(f"{value:.3f}" for value in result["a_total"].values())
+    note = (
+        f"; course a_total {totals} m/s² ({'/'.join(loads)}), {result['evaluations']} evaluations"
+    )
+    return result["gain"], note
 
 
 def run(args: argparse.Namespace) -> int:
@@ -115,6 +119,7 @@ def run(args: argparse.Namespace) -> int:
     )
     from loader_model.control.comfort_plant import comfort_case
 
+    course_note = ""
     loads = ("empty", "full") if args.load == "both" else (args.load,)
     params = None
     if args.params is not None:
@@ -146,7 +151,8 @@ def run(args: argparse.Namespace) -> int:
         print(_row(name, gain, evaluate_gain(every, gain)))
     print(f"  {label}: {note}")
     if args.method == "refine":
-        designed, label = _refine(args, designed, loads, params), "refined on the course"
+        designed, course_note = _refine(args, designed, loads, params)
+        label = "refined on the course"
     final = designed if designed is not None else next(iter(lqr.values()))
     print(
         "Closed loop with the designed gains (margin over all poles incl. the fixed road and"
@@ -173,8 +179,9 @@ def run(args: argparse.Namespace) -> int:
         source = (
             f"loader-model design --method {args.method} --load {args.load} --road "
             f"{args.road.upper()} --speed {args.speed:g} --margin {args.margin:g}"
-            f"{'' if args.params is None else f' --params {args.params}'} "
-            f"on {datetime.date.today().isoformat()}"
+            f"{'' if args.params is None else f' --params {args.params}'}"
+            f"{f' --evaluations {args.evaluations}' if args.method == 'refine' else ''} "
+            f"on {datetime.date.today().isoformat()}{course_note}"
         )
         save_settings(
             with_gains(default_settings(), final, source),

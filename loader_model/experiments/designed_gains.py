@@ -7,10 +7,15 @@ paper's low speed), exactly as ``loader-model design`` does:
 - output-feedback LQR (Eq. 41, 42): Q = C_zᵀ C_z, R = 1e-2, X0 = B_w B_wᵀ, on the empty bucket
   (one gain set for both loads, like Table 3);
 - comfort-optimised: Σ a_total² over both bucket loads, stability margin 0.1 rad/s
-  (:func:`~loader_model.control.comfort_design.optimise_gain`).
+  (:func:`~loader_model.control.comfort_design.optimise_gain`);
+- refined on the course: the comfort-optimised gains refined on the nonlinear paper course at
+  9 km/h, both loads (:mod:`~loader_model.control.course_refinement`), shipped as
+  ``data/controller_refined.toml`` (``make gains`` writes it; it takes minutes, too long for
+  the report, and a slow test checks that it still helps on the current model).
 
-Then the nonlinear Table 6 matrix runs them as the rows ``skyhook-lqr`` and ``skyhook-optimised``
-(:mod:`~loader_model.experiments.trials`): the nonlinear check of the linear design.
+Then the nonlinear Table 6 matrix runs them as the rows ``skyhook-lqr``, ``skyhook-optimised``
+and ``skyhook-refined`` (:mod:`~loader_model.experiments.trials`): the nonlinear check of the
+linear design, with the same trial seeds as Table 6's rows.
 """
 
 from __future__ import annotations
@@ -19,7 +24,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["DESIGN_ROAD_CLASS", "DESIGN_SPEED_KMH", "DesignedGain", "designed_gains"]
+__all__ = [
+    "DESIGN_ROAD_CLASS",
+    "DESIGN_SPEED_KMH",
+    "DesignedGain",
+    "designed_gains",
+    "refined_settings",
+]
 
 #: Road and speed of the design (ISO 8608 class, km/h).
 DESIGN_ROAD_CLASS = "C"
@@ -51,9 +62,21 @@ class DesignedGain:
     source: str
 
 
+def refined_settings():
+    """The shipped course-refined controller settings, ``data/controller_refined.toml``."""
+    from importlib import resources
+
+    from loader_model.control.settings import load_settings
+
+    with resources.as_file(
+        resources.files("loader_model").joinpath("data", "controller_refined.toml")
+    ) as path:
+        return load_settings(path)
+
+
 def designed_gains() -> dict[str, DesignedGain]:
-    """Table 3, LQR (empty bucket) and comfort-optimised gains with their linear evaluations,
-    keyed ``"skyhook"``, ``"skyhook-lqr"``, ``"skyhook-optimised"``."""
+    """Table 3, LQR (empty bucket), comfort-optimised and course-refined gains with their linear
+    evaluations, keyed ``"skyhook"`` and :data:`~loader_model.experiments.trials.DESIGNED_CONTROLLERS`."""
     from loader_model.control.comfort_design import (
         TABLE3_GAIN,
         comfort_plants,
@@ -77,6 +100,11 @@ def designed_gains() -> dict[str, DesignedGain]:
             f"({optimised['iterations']} iterations)",
         ),
     }
+    refined = refined_settings()
+    candidates["skyhook-refined"] = (
+        np.asarray(refined.k_fb).reshape(1, 4),
+        "data/controller_refined.toml: " + refined.source("k_fb"),
+    )
     gains = {}
     for name, (gain, source) in candidates.items():
         rows = evaluate_gain(plants, gain)

@@ -51,7 +51,7 @@ LOADS: tuple[str, ...] = ("empty", "full")
 CONTROLLERS: tuple[str, ...] = ("baseline", "passive", "virtual-accumulator", "skyhook")
 #: The skyhook with designed gains (:mod:`~loader_model.experiments.designed_gains`), run as two
 #: more rows of the matrix; their trials carry the gains in :attr:`TrialSpec.k_fb`.
-DESIGNED_CONTROLLERS: tuple[str, ...] = ("skyhook-lqr", "skyhook-optimised")
+DESIGNED_CONTROLLERS: tuple[str, ...] = ("skyhook-lqr", "skyhook-optimised", "skyhook-refined")
 #: Standard deviation of the driven speed as a fraction of the nominal speed (assumed).
 SPEED_STD_FRACTION = 0.02
 #: Largest deviation of the driven speed from the nominal speed, as a fraction (assumed).
