@@ -91,6 +91,15 @@ def discrepancy_section(tables: dict[str, Rows], within: int, count: int, lifts:
         "cannot decide it: the model's baseline shows the paper's peaks near 2 and 4 Hz, and "
         "at 17 km/h a 1.2 m wheelbase alone puts them there (front and rear inputs 0.254 s "
         "apart add in vertical at 3.9 Hz and in pitch at 2.0 Hz), whatever the modal damping.",
+        "   **What remains unexplained**: even without the leakage slope, nothing in the "
+        "model gives the paper's pattern. Linear, k_Lp = 0 (development): virtual "
+        "accumulator −6.5 % (9 km/h empty), −16.2 % (18 km/h empty), −7.7 % (9 km/h full), "
+        "−15.0 % (18 km/h full); the paper's largest reductions are at 9 km/h empty and its "
+        "9 km/h full row is about zero. The model has no mechanism that favours the slow, "
+        "light case; not modelled and candidates: roll and the left/right board timing "
+        "(planar model), the seat and its occupant, the tyres' enveloping and nonlinear "
+        "stiffness, the driver. With Table 5's leakage as printed, the baseline is already "
+        "damped and the model cannot show a 20-34 % reduction from softening the boom.",
         "4. **Not the pressure loop's sign (Eq. 43).** The model's loop V_p,ref = k_p "
         "(p_A,ref − HP(p_A)) is the negative feedback section 3.2 describes; with k_p = −0.5 "
         "(the loop sign Eq. 43's negative DC gain would suggest) the virtual accumulator and "
@@ -114,7 +123,9 @@ def discrepancy_section(tables: dict[str, Rows], within: int, count: int, lifts:
         "(+0.05 rad/s): section 3.2's 'proportional position regulation to maintain the boom "
         "angle' needs the restoring sign, k_φ > 0 with this model's φ (boom up positive) and "
         "p_A (lifts); the paper's φ or force sign convention evidently differs, but the paper "
-        "does not say which, so Table 3 is used as printed. Gains designed on this plant "
+        "does not say which, so Table 3 is used as printed; the sign does not move Table 6 "
+        "(development, 2 trials: 9 km/h full skyhook +22.8 % with −0.22, +23.5 % with +0.22). "
+        "Gains designed on this plant "
         "(README, issue 11: 46.6, −93.2, −54.1, 18.1; not Table 3) measured during "
         "development in one nonlinear trial: 9 km/h empty +12.2 % (Table 3: +33.6 %), "
         "18 km/h empty −14.5 % (paper −17.4 %).",
