@@ -67,6 +67,7 @@ def _figure_section() -> list[str]:
 def build_reproduction(folder: Path, options: ReportOptions) -> dict[str, object]:
     """Write the whole report into ``folder``; returns the Table 6 cells and timings."""
     from loader_model.experiments import figures
+    from loader_model.experiments.cause_analysis import cause_rows, gain_rows_linear
     from loader_model.experiments.designed_gains import designed_gains
     from loader_model.experiments.table6 import run_trials, table6_cells
     from loader_model.experiments.tables import (
@@ -98,6 +99,10 @@ def build_reproduction(folder: Path, options: ReportOptions) -> dict[str, object
         mark = time.perf_counter()
         tables["diagnostics"] = diagnostic_rows()
         timings["diagnostics (beside the trials)"] = time.perf_counter() - mark
+        mark = time.perf_counter()
+        tables["cause_linear"] = cause_rows("empty", 9.0)
+        tables["cause_gains"] = gain_rows_linear("empty", 9.0)
+        timings["linear cause analysis (beside the trials)"] = time.perf_counter() - mark
 
     mark = time.perf_counter()
     gains = designed_gains()
