@@ -34,3 +34,20 @@ def test_refinement_lowers_the_course_cost_and_stays_stable() -> None:
     assert again["empty"] == pytest.approx(result["a_total"]["empty"], rel=1e-12)
     assert result["cost"] == pytest.approx(again["empty"] ** 2, rel=1e-12)
     assert np.all(np.abs(result["gain"]) <= 100.0)
+
+
+@pytest.mark.slow
+def test_the_shipped_refined_gains_still_help_on_the_current_model() -> None:
+    """data/controller_refined.toml (make gains) is a derived file: after a model change it must
+    still be stable with the margin and still beat the linear optimum on the course it was
+    refined on; if not, run ``make gains``."""
+    from loader_model.experiments.designed_gains import refined_settings
+
+    refined = refined_settings()
+    assert refined.source("k_fb").startswith("loader-model design --method refine")
+    plants = comfort_plants(("empty", "full"))
+    gain = np.asarray(refined.k_fb).reshape(1, 4)
+    assert min(e.margin for e in evaluate_gain(plants, gain)) >= DEFAULT_MARGIN
+    optimum = course_cost(optimise_gain(plants)["gain"])
+    shipped = course_cost(gain)
+    assert sum(a**2 for a in shipped.values()) < sum(a**2 for a in optimum.values())
