@@ -226,9 +226,9 @@ def _control_design() -> None:
 
 
 def _scipy_closed_loop(road, params, duration_s: float) -> np.ndarray:
-    """The closed loop as users usually write it: the plant Function called with NumPy arrays per
-    right-hand side, ``solve_ivp(method="LSODA")`` over each 1 ms period, the (hold) controller
-    between periods. (Radau with its finite-difference Jacobian met NaN at the first board.)"""
+    """The earlier baseline: the CasADi plant Function called with NumPy arrays per right-hand
+    side, ``solve_ivp(method="LSODA")`` over each 1 ms period, the (hold) controller between
+    periods. (Radau with its finite-difference Jacobian met NaN at the first board.)"""
     from scipy.integrate import solve_ivp
 
     from loader_model.plant.equilibrium import static_state
@@ -264,12 +264,23 @@ def _scipy_closed_loop(road, params, duration_s: float) -> np.ndarray:
     return np.asarray(seats)
 
 
+#: Simulated span of the SymPy/scipy baseline: from rest over the first board with both axles
+#: (front axle at 1.93 s, rear at 2.41 s). The whole 20 s run takes over 10 minutes
+#: (about 30 s per simulated second on the development machine).
+BASELINE_SPAN_S = 3.0
+
+
 def _bench_simulator() -> None:
     """The closed-loop simulator (issue 12): one 20 s run over the paper's course at 9 km/h
-    (baseline controller, empty bucket), compiled ROS2 + mapaccum, against the scipy loop above."""
+    (baseline controller, empty bucket), compiled ROS2 + mapaccum, against the baseline of
+    tests/bench_baseline.py (SymPy lambdify + scipy solve_ivp LSODA per 1 ms period) over the
+    first :data:`BASELINE_SPAN_S` of the same run, compared per simulated second."""
+    from loader_model.plant.plant import OUTPUT_NAMES
     from loader_model.plant.plant_parameters import plant_parameter_vector
     from loader_model.simulation import paper_course
+    from loader_model.simulation.reference import reference_simulation
     from loader_model.simulation.simulator import course_input, simulate
+    from tests.bench_baseline import baseline_model, baseline_simulation, seat_agreement
 
     params = plant_parameter_vector(None, "empty")
     road = course_input(paper_course(9.0, settle_s=10.0), params)  # 22 s of road
@@ -279,11 +290,48 @@ def _bench_simulator() -> None:
     fast = _median_seconds(lambda: simulate(road, params, duration_s=20.0), 7)
     _report("simulate 20 s (goal: real-time factor>=300)", fast, unit="s")
     print(f"{'':<42}real-time factor {20.0 / fast:.0f}")
+    span = BASELINE_SPAN_S
+    fast_span = _median_seconds(lambda: simulate(road, params, duration_s=span), 7)
+    _report(f"simulate first {span:g} s", fast_span, unit="ms")
+
     start = time.perf_counter()
-    _scipy_closed_loop(road, params, 20.0)
-    baseline = time.perf_counter() - start
-    _report("baseline: scipy LSODA per period, 20 s", baseline, unit="s")
-    print(f"{'':<42}simulator is {baseline / fast:.0f} x faster (goal >= 8 x)")
+    model = baseline_model()
+    _report("baseline: derive + translate + lambdify", time.perf_counter() - start, unit="s")
+    start = time.perf_counter()
+    baseline = baseline_simulation(road, params, duration_s=span, model=model)
+    slow = time.perf_counter() - start
+    _report(f"baseline: lambdify + LSODA, first {span:g} s", slow, unit="s")
+    print(
+        f"{'':<42}{int(baseline['nfev'])} right-hand sides, "
+        f"{slow / int(baseline['nfev']) * 1e3:.2f} ms each incl. solve_ivp"
+    )
+    print(
+        f"{'':<42}(the whole 20 s run would take about {slow / span * 20.0 / 60:.0f} min: "
+        f"measured over the first {span:g} s, compared per simulated second)"
+    )
+    print(
+        f"{'':<42}simulator is {(slow / span) / (fast / 20.0):.0f} x faster per simulated "
+        f"second (20 s run; same {span:g} s span: {slow / fast_span:.0f} x; goal >= 8 x)"
+    )
+    start = time.perf_counter()
+    _scipy_closed_loop(road, params, span)
+    casadi_rhs = time.perf_counter() - start
+    _report(f"  CasADi plant rhs + LSODA, first {span:g} s", casadi_rhs, unit="s")
+    print(f"{'':<42}simulator is {casadi_rhs / fast_span:.0f} x faster over the same span")
+    seat = [OUTPUT_NAMES.index(name) for name in ("f_Sx", "f_Sy", "thetadd_1")]
+    reference = reference_simulation(road, params, duration_s=span)["y"][:, seat]
+    fast_run = simulate(road, params, duration_s=span)
+    fast_seat = np.column_stack([fast_run[name] for name in ("f_Sx", "f_Sy", "thetadd_1")])
+    same = seat_agreement(baseline["y"][:, seat], reference)
+    print(
+        f"{'':<42}same model: seat (f_Sx, f_Sy, θ̈1) ‖s − s_ref‖rms / ‖s_ref − s_ref(0)‖rms vs "
+        f"CVODES rtol 1e-10: baseline {_percent(same)}, simulator "
+        f"{_percent(seat_agreement(fast_seat, reference))}"
+    )
+
+
+def _percent(values: np.ndarray) -> str:
+    return ", ".join(f"{100 * value:.3g} %" for value in values)
 
 
 if __name__ == "__main__":
