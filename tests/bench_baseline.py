@@ -1,6 +1,6 @@
 """The benchmark's baseline simulator, written the way users usually write one (issue 12).
 
-SymPy ``lambdify(..., "numpy")`` of the model's equations, ``numpy.linalg.solve`` of the mass
+SymPy ``lambdify`` of the model's equations, ``numpy.linalg.solve`` of the mass
 matrix per right-hand side, ``scipy.integrate.solve_ivp`` over each 1 ms controller period with
 the same discrete controller between periods (zero-order hold), from the same static equilibrium,
 over the same road table (linear inside each period, as in
@@ -21,13 +21,25 @@ Where the equations come from (the same equations, none written a second time):
   named intermediates (the graph's own common subexpressions; without them SymPy folds nested
   Piecewise conditions for minutes and the lambdified code repeats the shared terms).
 
-Both parts are lambdified with the parameter vector as an argument, as a user would to vary it.
-Cost on the development machine: about 1.1 ms per right-hand side (0.8 ms of it the hydraulics,
-mostly ``numpy.select`` of scalar Piecewise), and about 30 s of wall time per simulated second
-of the paper's course (LSODA, rtol 1e-6, atol 1e-9, about 20 right-hand sides per period).
-Radau is not used: without a Jacobian it builds one by finite differences every few steps
-(15 more right-hand sides each), and a lambdified Jacobian of M⁻¹ f through the Piecewise
-intermediates was not attempted.
+Both parts are lambdified with the parameter vector as an argument, as a user would to vary it,
+with ``modules="numpy"`` (what users usually write; each Piecewise becomes a ``numpy.select`` of
+scalars, about 8 µs) or ``"math"`` (scalar Python, ``a if c else b``). Measured on the development
+machine over the first 3 s of the paper's course, about 20 right-hand sides per 1 ms period:
+
+===========================================  ===============  ==========================
+variant                                      wall per 1 s     per right-hand side
+===========================================  ===============  ==========================
+"numpy", LSODA (finite-difference Jacobian)  20-32 s          1.0-1.3 ms incl. solve_ivp
+"math", LSODA (finite-difference Jacobian)   1.8 s            0.09 ms incl. solve_ivp
+"math", LSODA with the lambdified Jacobian   2.9 s            (Jacobian 0.6 ms)
+"math", Radau with the lambdified Jacobian   5.6 s
+"math", BDF                                  fails at 0.13 s  (step size underflow)
+===========================================  ===============  ==========================
+
+The Jacobian (``jacobian=True``): forward differentiation in SymPy of the multibody right-hand
+side through the contact law's intermediates, ∂p̈/∂x = M⁻¹ (∂f/∂x − ∂(M p̈)/∂x), and CasADi's SX
+Jacobian of the hydraulics translated like the hydraulics; it equals CasADi's AD Jacobian of the
+plant to round-off.
 """
 
 from __future__ import annotations
@@ -201,12 +213,45 @@ def _use_counts(function: ca.Function) -> list[int]:
     return uses
 
 
+def _forward_jacobian(
+    outputs: sp.Matrix, definitions: Sequence[tuple[sp.Symbol, sp.Expr]], wrt: Sequence[sp.Symbol]
+) -> tuple[sp.Matrix, list[tuple[sp.Symbol, sp.Expr]]]:
+    """Jacobian of ``outputs`` with respect to ``wrt`` through ordered intermediates (forward
+    mode: each intermediate's gradient is named after it), for :func:`_lambdify`."""
+    ops = _Translation("_d")
+    gradients: dict[sp.Symbol, list[sp.Expr]] = {}
+
+    def gradient(expression: sp.Expr) -> list[sp.Expr]:
+        inner = [symbol for symbol in gradients if expression.has(symbol)]
+        row = []
+        for j, variable in enumerate(wrt):
+            entry = sp.diff(expression, variable)
+            for symbol in inner:
+                entry += sp.diff(expression, symbol) * gradients[symbol][j]
+            row.append(entry)
+        return row
+
+    for symbol, expression in definitions:
+        ops.definitions.append((symbol, expression))
+        gradients[symbol] = [
+            entry if entry.is_Atom else ops.name(entry) for entry in gradient(expression)
+        ]
+    return sp.Matrix([gradient(entry) for entry in outputs]), ops.definitions
+
+
 def _lambdify(
-    args: Sequence[Any], expressions: Any, definitions: Sequence[tuple[sp.Symbol, sp.Expr]] = ()
+    args: Sequence[Any],
+    expressions: Sequence[sp.Matrix],
+    definitions: Sequence[tuple[sp.Symbol, sp.Expr]] = (),
+    modules: str = "numpy",
 ) -> Callable[..., Any]:
-    """``sympy.lambdify(args, expressions, "numpy")`` evaluating ``definitions`` first, in order."""
+    """``sympy.lambdify(args, expressions, modules)`` evaluating ``definitions`` first, in order.
+
+    Matrices are passed as nested lists, so that the ``"math"`` printer (no NumPy) can print them.
+    """
     ordered = list(definitions)
-    return sp.lambdify(args, expressions, "numpy", cse=lambda exprs: (ordered, exprs))
+    lists = [matrix.tolist() for matrix in expressions]
+    return sp.lambdify(args, lists, modules, cse=lambda exprs: (ordered, exprs))
 
 
 @dataclass(frozen=True)
@@ -229,6 +274,44 @@ class BaselineModel:
     hydraulics: Callable[..., Any]
     """hydraulics(x, u, params) -> [F_act, x_piston, Q_pump, p_acc, (ṗ_A, ṗ_B, V̇_p, V̈_p, V̇_acc)]."""
     n_mechanical: int
+    force_jacobian: Callable[..., Any] | None = None
+    """force_jacobian(p, pd, anchor, F_act, road, road_rate, disturbance, mechanical) ->
+    [∂(rhs, ξ̇)/∂(p, ṗ, ξ, F_act)] (6, 11)."""
+    inertia_jacobian: Callable[..., Any] | None = None
+    """inertia_jacobian(p, pdd, mechanical) -> [∂(M(p) p̈)/∂p at fixed p̈] (4, 4)."""
+    hydraulics_jacobian: Callable[..., Any] | None = None
+    """hydraulics_jacobian(x, u, params) -> [∂(F_act, rates)/∂x] (90,), column-major (6, 15)."""
+
+    def jacobian(self, x: Array, u: float, w: Array, params: Array, mechanical: Array) -> Array:
+        """∂ẋ/∂x (15, 15): p̈ = M⁻¹ f gives ∂p̈/∂x = M⁻¹ (∂f/∂x − ∂(M p̈)/∂x at fixed p̈)."""
+        if self.force_jacobian is None or self.inertia_jacobian is None:
+            raise ValueError("built without Jacobians: baseline_model(jacobian=True)")
+        assert self.hydraulics_jacobian is not None
+        p, pd, anchor = x[0:4], x[4:8], x[8:10]
+        _, pdd, force, *_ = self._dynamics(x, u, w, params, mechanical)
+        hydraulic = np.asarray(self.hydraulics_jacobian(x, [u], params)[0], dtype=float)
+        hydraulic = hydraulic.reshape((6, x.size), order="F")
+        forces = np.asarray(
+            self.force_jacobian(p, pd, anchor, [force], w[0:4], w[4:8], w[8:11], mechanical)[0],
+            dtype=float,
+        )
+        inertia = np.asarray(self.inertia_jacobian(p, pdd, mechanical)[0], dtype=float)
+        mass = np.asarray(self.mass_matrix(p, mechanical)[0], dtype=float)
+        d_force = np.zeros((4, x.size))
+        d_force[:, 0:10] = forces[0:4, 0:10]
+        d_force[:, 0:4] -= inertia
+        d_force += np.outer(forces[0:4, 10], hydraulic[0])
+        jacobian = np.zeros((x.size, x.size))
+        jacobian[0:4, 4:8] = np.eye(4)
+        jacobian[4:8] = np.linalg.solve(mass, d_force)
+        jacobian[8:10, 0:10] = forces[4:6, 0:10]
+        jacobian[10:15] = hydraulic[1:6]
+        return jacobian
+
+    def completed(self, params: Array) -> Array:
+        """The completed multibody parameters of the plant parameters ``params``."""
+        values = self.complete(np.asarray(params, dtype=float)[: self.n_mechanical])
+        return np.asarray(values, dtype=float).ravel()
 
     def rhs(self, x: Array, u: float, w: Array, params: Array, mechanical: Array) -> Array:
         """ẋ of the plant (state order :data:`~loader_model.plant.plant.STATE_NAMES`)."""
@@ -273,19 +356,20 @@ class BaselineModel:
         """ẋ, p̈ and the hydraulic outputs F_act, x_piston, Q_pump, p_acc."""
         p, pd, anchor = x[0:4], x[4:8], x[8:10]
         force, position, pump_flow, p_acc, rates = self.hydraulics(x, [u], params)
-        force = float(force[0, 0])
-        mass = np.asarray(self.mass_matrix(p, mechanical), dtype=float)
+        force = float(np.ravel(force)[0])
+        mass = np.asarray(self.mass_matrix(p, mechanical)[0], dtype=float)
         rhs, anchor_rate = self.forces(p, pd, anchor, [force], w[0:4], w[4:8], w[8:11], mechanical)
         pdd = np.linalg.solve(mass, np.asarray(rhs, dtype=float).ravel())
         xdot = np.concatenate(
             [pd, pdd, np.asarray(anchor_rate, float).ravel(), np.asarray(rates, float).ravel()]
         )
-        scalars = (float(value[0, 0]) for value in (position, pump_flow, p_acc))
+        scalars = (float(np.ravel(value)[0]) for value in (position, pump_flow, p_acc))
         return (xdot, pdd, force, *scalars)
 
 
-def _hydraulic_function() -> ca.Function:
-    """The plant's hydraulic part as an SX Function of (x, u, params) (plant.py's own code)."""
+def _hydraulic_function(jacobian: bool = False) -> ca.Function:
+    """The plant's hydraulic part as an SX Function of (x, u, params) (plant.py's own code), or
+    with ``jacobian`` the dense ∂(F_act, rates)/∂x, column-major as one column."""
     import loader_model_generated as generated
     from loader_model.plant import plant
     from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
@@ -297,11 +381,21 @@ def _hydraulic_function() -> ca.Function:
     completed, _ = generated.function("complete_parameters")(params[:n_mechanical])
     drive = plant._drive(x, u, plant._named(params), completed)
     names = ("force", "position", "pump_flow", "p_acc", "rates")
+    if jacobian:
+        d_drive = ca.jacobian(ca.vertcat(drive["force"], drive["rates"]), x)
+        return ca.Function("d_hydraulics", [x, u, params], [ca.vec(ca.densify(d_drive))])
     return ca.Function("hydraulics", [x, u, params], [drive[name] for name in names])
 
 
-def baseline_model() -> BaselineModel:
-    """Derive, translate and lambdify the plant (module notes); about 2-5 s."""
+def baseline_model(modules: str = "numpy", jacobian: bool = False) -> BaselineModel:
+    """Derive, translate and lambdify the plant (module notes); about 2-5 s.
+
+    Parameters
+    ----------
+    modules : str
+        ``lambdify``'s modules: ``"numpy"`` (what users usually write; Piecewise becomes
+        ``numpy.select``) or ``"math"`` (scalar Python: Piecewise becomes ``a if c else b``).
+    """
     from derive.mechanics import derive_mechanics
     from derive.symbols import (
         ANCHORS,
@@ -336,23 +430,40 @@ def baseline_model() -> BaselineModel:
         [p, pd, anchor, [FORCE], road, road_rate, list(DISTURBANCES), symbols],
         [rhs, mech.anchor_rates],
         contact,
+        modules,
     )
     outputs = _lambdify(
         [p, pd, pdd, anchor, road, road_rate, symbols],
         [*(mech.specific_forces[letter] for letter in "HNS"), mech.tyre_forces],
         contact,
+        modules,
     )
     x = list(sp.symbols(f"x0:{15}", real=True))
     u = [sp.Symbol("u", real=True)]
     theta = list(sp.symbols(f"theta0:{len(PLANT_PARAMETER_NAMES)}", real=True))
     hydraulic, steps = sx_to_sympy(_hydraulic_function(), [x, u, theta])
+    extra: dict[str, Any] = {}
+    if jacobian:
+        wrt = [*p, *pd, *anchor, FORCE]
+        matrix, chain = _forward_jacobian(rhs.col_join(mech.anchor_rates), contact, wrt)
+        extra["force_jacobian"] = _lambdify(
+            [p, pd, anchor, [FORCE], road, road_rate, list(DISTURBANCES), symbols],
+            [matrix],
+            chain,
+            modules,
+        )
+        inertia = (mech.mass_matrix * sp.Matrix(pdd)).jacobian(p)
+        extra["inertia_jacobian"] = _lambdify([p, pdd, symbols], [inertia], (), modules)
+        d_hydraulic, d_steps = sx_to_sympy(_hydraulic_function(jacobian=True), [x, u, theta])
+        extra["hydraulics_jacobian"] = _lambdify([x, u, theta], d_hydraulic, d_steps, modules)
     return BaselineModel(
-        complete=_lambdify([symbols], completed),
-        mass_matrix=_lambdify([p, symbols], mech.mass_matrix),
+        complete=_lambdify([symbols], [sp.Matrix(completed)], (), modules),
+        mass_matrix=_lambdify([p, symbols], [mech.mass_matrix], (), modules),
         forces=forces,
         outputs=outputs,
-        hydraulics=_lambdify([x, u, theta], hydraulic, steps),
+        hydraulics=_lambdify([x, u, theta], hydraulic, steps, modules),
         n_mechanical=len(symbols),
+        **extra,
     )
 
 
@@ -384,7 +495,7 @@ def baseline_simulation(
 
     model = baseline_model() if model is None else model
     params = np.asarray(params, dtype=float).ravel()
-    mechanical = np.asarray(model.complete(params[: model.n_mechanical]), dtype=float).ravel()
+    mechanical = model.completed(params)
     x, command = static_state(params)
     controller = hold_controller(command) if controller is None else controller
     z = np.zeros(controller.size1_in(0)) if controller_state is None else controller_state
@@ -404,6 +515,12 @@ def baseline_simulation(
         w = exogenous[k] + (exogenous[k + 1] - exogenous[k]) * fraction
         return model.rhs(state, u, w, params, mechanical)
 
+    def jacobian(t: float, state: Array, u: float, k: int) -> Array:
+        fraction = (t - time_s[k]) / period
+        w = exogenous[k] + (exogenous[k + 1] - exogenous[k]) * fraction
+        return model.jacobian(state, u, w, params, mechanical)
+
+    options = {} if model.force_jacobian is None else {"jac": jacobian}
     for k in range(count):
         y = model.plant_outputs(x, command, exogenous[k], params, mechanical)
         z_next, u = controller(z, y, settings_vector)
@@ -417,6 +534,7 @@ def baseline_simulation(
             args=(command, k),
             rtol=rtol,
             atol=atol,
+            **options,
         )
         if not solution.success:
             raise RuntimeError(f"solve_ivp failed at t = {time_s[k]:.4f} s: {solution.message}")
