@@ -67,9 +67,10 @@ def test_the_lambdified_jacobian_equals_casadis() -> None:
     params = plant_parameter_vector(None, "empty")
     mechanical = model.completed(params)
     plant = plant_function()
-    x, u, w = (ca.SX.sym(name, plant.size1_in(i)) for i, name in enumerate("xuw"))
-    theta = ca.SX.sym("params", params.size)
-    exact = ca.Function("jac", [x, u, w, theta], [ca.jacobian(plant(x, u, w, theta)[0], x)])
+    x, u, w, theta = (ca.SX.sym(plant.name_in(i), plant.size1_in(i)) for i in range(4))
+    exact = ca.Function(
+        "plant_jacobian", [x, u, w, theta], [ca.jacobian(plant(x, u, w, theta)[0], x)]
+    )
     x0, u0 = static_state(params)
     scale = np.r_[np.full(8, 1e-2), 1e-3, 1e-3, 1e5, 1e5, 1e-7, 1e-5, 1e-6]
     rng = np.random.default_rng(3)
