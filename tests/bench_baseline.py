@@ -69,7 +69,8 @@ def _is_condition(value: Any) -> bool:
 
 
 class _Translation:
-    """SymPy operands of an SX translation, with each piecewise result named (an intermediate)."""
+    """SymPy operands of an SX translation; piecewise and shared results become named
+    intermediates."""
 
     def __init__(self, prefix: str) -> None:
         self.prefix = prefix
