@@ -227,9 +227,9 @@ def _control_design() -> None:
 
 
 def _scipy_closed_loop(road, params, duration_s: float) -> np.ndarray:
-    """The closed loop as users usually write it: the plant Function called with NumPy arrays per
-    right-hand side, ``solve_ivp(method="LSODA")`` over each 1 ms period, the (hold) controller
-    between periods. (Radau with its finite-difference Jacobian met NaN at the first board.)"""
+    """The earlier baseline: the CasADi plant Function called with NumPy arrays per right-hand
+    side, ``solve_ivp(method="LSODA")`` over each 1 ms period, the (hold) controller between
+    periods. (Radau with its finite-difference Jacobian met NaN at the first board.)"""
     from scipy.integrate import solve_ivp
 
     from loader_model.plant.equilibrium import static_state
@@ -265,12 +265,25 @@ def _scipy_closed_loop(road, params, duration_s: float) -> np.ndarray:
     return np.asarray(seats)
 
 
+#: Simulated span of the slower baselines: from rest over the first board with both axles (front
+#: axle at 1.93 s, rear at 2.41 s). The whole 20 s run would take about 7-10 minutes with lambdify
+#: "numpy" (20-30 s per simulated second on the development machine).
+BASELINE_SPAN_S = 3.0
+
+
 def _bench_simulator() -> None:
     """The closed-loop simulator (issue 12): one 20 s run over the paper's course at 9 km/h
-    (baseline controller, empty bucket), compiled ROS2 + mapaccum, against the scipy loop above."""
+    (baseline controller, empty bucket), compiled ROS2 + mapaccum, against the baseline of
+    tests/bench_baseline.py: SymPy lambdify + scipy solve_ivp per 1 ms period, with lambdify's
+    scalar ``"math"`` modules (the fastest variant) over the same 20 s; with ``"numpy"`` (as users
+    usually write it, 10 times slower) and Radau with the lambdified Jacobian over the first
+    :data:`BASELINE_SPAN_S`, compared per simulated second. All against the CVODES reference."""
+    from loader_model.plant.plant import OUTPUT_NAMES
     from loader_model.plant.plant_parameters import plant_parameter_vector
     from loader_model.simulation import paper_course
+    from loader_model.simulation.reference import reference_simulation
     from loader_model.simulation.simulator import course_input, simulate
+    from tests.bench_baseline import baseline_model, baseline_simulation, seat_agreement
 
     params = plant_parameter_vector(None, "empty")
     road = course_input(paper_course(9.0, settle_s=10.0), params)  # 22 s of road
@@ -280,11 +293,59 @@ def _bench_simulator() -> None:
     fast = _median_seconds(lambda: simulate(road, params, duration_s=20.0), 7)
     _report("simulate 20 s (goal: real-time factor>=300)", fast, unit="s")
     print(f"{'':<42}real-time factor {20.0 / fast:.0f}")
+    span = BASELINE_SPAN_S
+    fast_span = _median_seconds(lambda: simulate(road, params, duration_s=span), 7)
+    _report(f"simulate first {span:g} s", fast_span, unit="ms")
+
+    cases = {
+        "lambdify 'math' + LSODA, 20 s": ("math", False, "LSODA", 20.0),
+        f"lambdify 'numpy' + LSODA, {span:g} s": ("numpy", False, "LSODA", span),
+        f"'math' + Radau (jac), {span:g} s": ("math", True, "Radau", span),
+    }
+    runs = {}
+    for label, (modules, jacobian, method, duration) in cases.items():
+        start = time.perf_counter()
+        model = baseline_model(modules, jacobian=jacobian)
+        built = time.perf_counter() - start
+        start = time.perf_counter()
+        runs[label] = baseline_simulation(
+            road, params, duration_s=duration, method=method, model=model
+        )
+        slow = time.perf_counter() - start
+        evaluations = int(runs[label]["nfev"])
+        _report(f"baseline: {label}", slow, unit="s")
+        print(
+            f"{'':<42}derive + translate + lambdify {built:.1f} s; {evaluations} right-hand "
+            f"sides, {slow / evaluations * 1e3:.2f} ms each with solve_ivp"
+        )
+        same_run = "the same 20 s run" if duration == 20.0 else f"per simulated second, {span:g} s"
+        print(
+            f"{'':<42}simulator is {(slow / duration) / (fast / 20.0):.0f} x faster ({same_run}; "
+            f"goal >= 8 x)"
+        )
     start = time.perf_counter()
-    _scipy_closed_loop(road, params, 20.0)
-    baseline = time.perf_counter() - start
-    _report("baseline: scipy LSODA per period, 20 s", baseline, unit="s")
-    print(f"{'':<42}simulator is {baseline / fast:.0f} x faster (goal >= 8 x)")
+    _scipy_closed_loop(road, params, span)
+    casadi_rhs = time.perf_counter() - start
+    _report(f"  CasADi plant rhs + LSODA, {span:g} s", casadi_rhs, unit="s")
+    print(f"{'':<42}simulator is {(casadi_rhs / span) / (fast / 20.0):.0f} x faster per second")
+
+    seat_names = ("f_Sx", "f_Sy", "thetadd_1")
+    seat = [OUTPUT_NAMES.index(name) for name in seat_names]
+    reference = reference_simulation(road, params, duration_s=20.0)["y"][:, seat]
+    print(
+        f"{'':<42}same model: seat (f_Sx, f_Sy, θ̈1) ‖s − s_ref‖rms / ‖s_ref − s_ref(0)‖rms "
+        f"against CVODES at rtol 1e-10 over each run's span:"
+    )
+    for label, run in runs.items():
+        rows = run["y"].shape[0]
+        print(f"{'':<42}  {label}: {_percent(seat_agreement(run['y'][:, seat], reference[:rows]))}")
+    fast_run = simulate(road, params, duration_s=20.0)
+    fast_seat = np.column_stack([fast_run[name] for name in seat_names])
+    print(f"{'':<42}  simulator, 20 s: {_percent(seat_agreement(fast_seat, reference))}")
+
+
+def _percent(values: np.ndarray) -> str:
+    return ", ".join(f"{100 * value:.3g} %" for value in values)
 
 
 def _bench_matrix() -> None:
