@@ -41,7 +41,7 @@ import numpy as np
 from loader_model.control.design_plant import DesignPlant
 from loader_model.control.feasible_descent import BarrierObjective, _margin
 
-__all__ = ["minimise_ipopt"]
+__all__ = ["comfort_phi", "minimise_ipopt"]
 
 
 class _Phi(ca.Callback):
@@ -129,11 +129,11 @@ class _Gradient(ca.Callback):
 
 
 class _Recorder(ca.Callback):
-    """IPOPT iteration callback: keeps x of every iterate."""
+    """IPOPT iteration callback: keeps x and Φ of every iterate."""
 
     def __init__(self, n: int) -> None:
         ca.Callback.__init__(self)
-        self.n, self.iterates = n, []
+        self.n, self.iterates, self.values = n, [], []
         self.construct("comfort_iterates", {})
 
     def get_n_in(self) -> int:
@@ -153,7 +153,37 @@ class _Recorder(ca.Callback):
 
     def eval(self, arg: list) -> list:
         self.iterates.append(np.asarray(arg[0], dtype=float).ravel().copy())
+        self.values.append(float(arg[ca.nlpsol_out().index("f")]))
         return [0]
+
+
+def comfort_phi(
+    plants: Sequence[DesignPlant],
+    gain0: np.ndarray,
+    *,
+    mask: np.ndarray,
+    effort: np.ndarray,
+    margin: float,
+    mu: float = 1e-4,
+) -> ca.Callback:
+    """Φ of the module docstring as a CasADi Function ``comfort_phi(k) -> phi`` of the free gains.
+
+    J is normalised by J(``gain0``); the entries of ``gain0`` outside ``mask`` stay fixed.
+    Differentiable in CasADi (``ca.jacobian`` or ``ca.gradient`` of a call) by the adjoint
+    gradient; +inf outside the certified set. Keep the returned object alive while it is used.
+
+    Raises
+    ------
+    ValueError
+        If ``gain0`` misses the margin or an r.m.s. limit.
+    """
+    gain0 = np.atleast_2d(np.asarray(gain0, dtype=float))
+    objective = BarrierObjective(plants, effort, margin, mu)
+    first = objective(gain0)
+    if first is None:
+        raise ValueError("the start gain misses the stability margin or an r.m.s. limit")
+    objective.scale = first[2]
+    return _Phi(objective, gain0, np.asarray(mask, dtype=bool).ravel())
 
 
 def minimise_ipopt(
@@ -175,7 +205,7 @@ def minimise_ipopt(
     plus ``iterates`` (gain per IPOPT iterate, the start first), ``iterate_margins`` (min over
     plants of min −Re λ at each, numpy eigenvalues, computed after the solve),
     ``evaluations`` (points evaluated) and ``rejected`` (of those, outside the set: Φ = +inf).
-    ``history`` is J at each iterate, from the values IPOPT saw. ``tol`` is IPOPT's ``tol``
+    ``history`` is J at each iterate, from the values IPOPT saw, ``phi_history`` Φ. ``tol`` is IPOPT's ``tol``
     (its scaled dual infeasibility, here the largest |∂Φ/∂k|); 1e-7 matches the gradient
     tolerance of :func:`~loader_model.control.feasible_descent.minimise_certified`.
 
@@ -185,14 +215,8 @@ def minimise_ipopt(
         If ``gain0`` misses the margin or an r.m.s. limit.
     """
     started = time.perf_counter()
-    gain0 = np.atleast_2d(np.asarray(gain0, dtype=float))
-    free = np.asarray(mask, dtype=bool).ravel()
-    objective = BarrierObjective(plants, effort, margin, mu)
-    first = objective(gain0)
-    if first is None:
-        raise ValueError("the start gain misses the stability margin or an r.m.s. limit")
-    objective.scale = first[2]
-    phi = _Phi(objective, gain0, free)
+    phi = comfort_phi(plants, gain0, mask=mask, effort=effort, margin=margin, mu=mu)
+    objective, free = phi.objective, phi.free
     recorder = _Recorder(int(free.sum()))
     k = ca.MX.sym("k", int(free.sum()))
     options = {
@@ -206,7 +230,7 @@ def minimise_ipopt(
         "iteration_callback": recorder,
     }
     solver = ca.nlpsol("comfort_ipopt", "ipopt", {"x": k, "f": phi(k)}, options)
-    solution = solver(x0=gain0.ravel()[free])
+    solution = solver(x0=phi.gain0.ravel()[free])
     stats = solver.stats()
     gain = phi.gain(np.asarray(solution["x"]).ravel())
     final = objective(gain)  # the check after the solve: margin and limits at the result
@@ -221,6 +245,7 @@ def minimise_ipopt(
         "status": str(stats["return_status"]),
         "time_s": elapsed,
         "iterates": tuple(phi.gain(x) for x in recorder.iterates),
+        "phi_history": tuple(recorder.values),
         "iterate_margins": np.array([_margin(plants, phi.gain(x)) for x in recorder.iterates]),
         "evaluations": phi.evaluations,
         "rejected": phi.rejected,
