@@ -24,6 +24,7 @@ trial gain is accepted only if (1) every closed loop has all poles left of −σ
 eigenvalues), (2) every r.m.s. value is inside its limit, (3) Φ decreases (Armijo). So every
 iterate, and the result, meets the margin and the limits; the start must meet them too (phase 1
 of :func:`~loader_model.control.h2_design.design_h2_gain` moves it there). A local optimum.
+:mod:`~loader_model.control.comfort_ipopt` minimises the same Φ with IPOPT through CasADi.
 """
 
 from __future__ import annotations
