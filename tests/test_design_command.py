@@ -41,13 +41,15 @@ def test_designed_gains_go_to_a_settings_file_that_simulate_runs(tmp_path: Path,
     from loader_model.control.settings import load_settings
 
     target = tmp_path / "designed.toml"
-    assert main(["design", "--load", "empty", "--output", str(target)]) == 0
+    assert main(["design", "--load", "empty", "--solver", "ipopt", "--output", str(target)]) == 0
     out = capsys.readouterr().out
     settings = load_settings(target)
     printed = next(line for line in out.splitlines() if "optimised (ISO 2631) " in line)
     shown = [float(v) for v in printed.split("[")[1].split("]")[0].split()]
     assert shown == pytest.approx(settings.k_fb, abs=5e-4)
-    assert settings.source("k_fb").startswith("loader-model design --method optimise --load empty")
+    assert settings.source("k_fb").startswith(
+        "loader-model design --method optimise --solver ipopt --load empty"
+    )
     assert main(["simulate", "--controller", str(target), "--duration", "3"]) == 0
     assert f"{target} controller" in capsys.readouterr().out
 

@@ -9,8 +9,8 @@ HELP = "design the skyhook gains K_fb (LQR or ISO 2631 optimisation); Fig. 12"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add ``--params``, ``--load``, ``--method``, ``--road``, ``--speed``, ``--margin``,
-    ``--plot`` and ``--output``."""
+    """Add ``--params``, ``--load``, ``--method``, ``--solver``, ``--road``, ``--speed``,
+    ``--margin``, ``--plot`` and ``--output``."""
     parser.add_argument("--params", metavar="FILE", default=None, help="loader parameter file")
     parser.add_argument(
         "--load",
@@ -24,6 +24,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         default="optimise",
         help="lqr: output-feedback LQR (Eq. 41, 42); optimise: ISO 2631 a_total on the linear "
         "plant (default); refine: optimise, then refine on the nonlinear paper course at --speed",
+    )
+    parser.add_argument(
+        "--solver",
+        choices=("bfgs", "ipopt"),
+        default="bfgs",
+        help="optimise/refine: bfgs: certified BFGS with adjoint gradients (default); ipopt: "
+        "IPOPT through CasADi on the same cost (every iterate stable, same optimum)",
     )
     parser.add_argument(
         "--evaluations",
@@ -132,9 +139,12 @@ def run(args: argparse.Namespace) -> int:
     flipped = TABLE3_GAIN * np.array([[1.0, 1.0, 1.0, -1.0]])
     lqr = {p.name: lqr_gain(p).gain for p in design}
     if args.method in ("optimise", "refine"):
-        result = optimise_gain(design, margin=args.margin)
+        result = optimise_gain(design, margin=args.margin, solver=args.solver)
         designed, label = result["gain"], "optimised (ISO 2631)"
-        note = f"{result['iterations']} iterations, {result['time_s']:.2f} s, {result['status']}"
+        note = (
+            f"{args.solver}: {result['iterations']} iterations, {result['time_s']:.2f} s, "
+            f"{result['status']}"
+        )
     else:
         designed = lqr[loads[0]] if len(loads) == 1 else None
         label, note = "output-feedback LQR", "Q = C_zᵀC_z, R = 1e-2, X0 = B_w B_wᵀ"
@@ -177,7 +187,8 @@ def run(args: argparse.Namespace) -> int:
         from loader_model.control.settings import default_settings, save_settings, with_gains
 
         source = (
-            f"loader-model design --method {args.method} --load {args.load} --road "
+            f"loader-model design --method {args.method}"
+            f"{'' if args.method == 'lqr' else f' --solver {args.solver}'} --load {args.load} --road "
             f"{args.road.upper()} --speed {args.speed:g} --margin {args.margin:g}"
             f"{'' if args.params is None else f' --params {args.params}'}"
             f"{f' --evaluations {args.evaluations}' if args.method == 'refine' else ''} "
