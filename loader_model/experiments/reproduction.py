@@ -26,6 +26,8 @@ FIGURES = {
     "fig13_seat_skyhook.png": "Fig. 13: seat vertical acceleration over one board, 9 km/h, empty",
     "fig14_summary.png": "Fig. 14: mean a_total with 95 % confidence intervals",
     "fig10_spectra.png": "Fig. 10: spectra of the chassis accelerations, one board at 17 km/h",
+    "fig12_pitch_response.png": "Fig. 12: pitch disturbance response without and with feedback "
+    "(linear plant; Table 3 is unstable on it, shown with k_φ = +0.22)",
     "eq43_pressure_loop.png": "Eq. 43: detailed pressure loop beside the reduced-order model",
     "iso2631_weightings.png": "ISO 2631-1 frequency weightings (Annex A)",
 }
@@ -60,6 +62,24 @@ def diagnostic_rows() -> Rows:
     return rows
 
 
+def _plot_fig12(path: Path, gains: dict) -> None:
+    """Fig. 12 on the linear plant, both loads: no feedback, Table 3 (k_φ = +0.22), designed."""
+    from loader_model.control.comfort_figure import pitch_responses, plot_pitch_responses
+    from loader_model.control.comfort_plant import comfort_case
+
+    table3 = np.asarray(gains["skyhook"].k_fb) * np.array([1.0, 1.0, 1.0, -1.0])
+    shown = {
+        "Table 3 with k_φ = +0.22": table3,
+        "comfort-optimised": gains["skyhook-optimised"].k_fb,
+        "refined on the course": gains["skyhook-refined"].k_fb,
+    }
+    frequency = np.geomspace(0.3, 30.0, 400)
+    curves = {
+        load: pitch_responses(comfort_case(load), shown, frequency) for load in ("empty", "full")
+    }
+    plot_pitch_responses(path, curves, frequency)
+
+
 def _figure_section() -> list[str]:
     return [f"![{caption}]({name})\n\n*{caption}.*\n" for name, caption in FIGURES.items()]
 
@@ -90,6 +110,7 @@ def build_reproduction(folder: Path, options: ReportOptions) -> dict[str, object
         figures.plot_fig13(folder / "fig13_seat_skyhook.png")
         figures.plot_fig10(folder / "fig10_spectra.png", TABLE_1.frequencies_hz)
         plot_weightings(folder / "iso2631_weightings.png")
+        _plot_fig12(folder / "fig12_pitch_response.png", gains)
         tables["table1"] = table1_rows()
         tables["eq43"] = pressure_loop_rows(folder / "eq43_pressure_loop.png")
         timings["figures, Table 1, Eq. 43 (beside the trials)"] = time.perf_counter() - mark
