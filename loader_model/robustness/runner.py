@@ -1,0 +1,208 @@
+"""One sample of a study: build its plant and road, run every controller, one row per controller.
+
+Composes what exists: the parameter files' validated :func:`~loader_model.parameters.replace`,
+:func:`~loader_model.plant.plant_parameters.plant_parameter_vector`, the courses, the simulator and
+the ride controllers. Nothing here stops a study: a sample whose plant fails the parameter checks,
+or a run that raises (:class:`~loader_model.simulation.simulator.SimulationError` when the
+integration leaves the finite numbers, e.g. an unstable closed loop), gives rows with ``failed``
+true and the reason. CasADi Functions are built once per worker process (module-level caches here
+and in :mod:`~loader_model.simulation.stepper`), never per sample.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Any
+
+import numpy as np
+
+from loader_model.robustness.gains import Gains, max_pole_real
+from loader_model.robustness.sampling import SampleSpec
+from loader_model.robustness.study import Study
+from loader_model.simulation.simulator import course_input, simulate
+
+__all__ = ["AXES", "run_batch", "run_sample", "sample_plant_vector"]
+
+#: ISO 2631-1 axes of the seat evaluation (x = fore-aft, z = vertical, pitch).
+AXES: tuple[str, ...] = ("x", "z", "pitch")
+_CONTROLLERS: dict[str, Any] = {}
+
+
+def _controller(kind: str) -> Any:
+    """The controller Function of ``kind``, built once per process.
+
+    ``hold``: the baseline's constant command, taken from its one setting instead of being a
+    constant of the Function (:func:`~loader_model.simulation.controllers.hold_controller` bakes
+    u0 in, so every sampled plant would compile a new period).
+    """
+    import casadi as ca
+
+    from loader_model.simulation.ride_control import plant_controller
+
+    if kind not in _CONTROLLERS:
+        if kind == "hold":
+            z, settings = ca.SX.sym("z", 0), ca.SX.sym("settings", 1)
+            y = ca.SX.sym("y", plant_controller("skyhook").size1_in(1))
+            _CONTROLLERS[kind] = ca.Function(
+                "hold_setting",
+                [z, y, settings],
+                [z, settings[0]],
+                ["z", "y", "settings"],
+                ["z_next", "u"],
+            )
+        else:
+            _CONTROLLERS[kind] = plant_controller(kind)
+    return _CONTROLLERS[kind]
+
+
+def sample_plant_vector(spec: SampleSpec) -> tuple[np.ndarray, Any]:
+    """Plant parameter vector (accumulator shut) and bucket load of a sample.
+
+    Raises
+    ------
+    ValueError
+        From the parameter files' range and consistency checks.
+    """
+    from loader_model import parameters
+    from loader_model.plant.plant_parameters import plant_parameter_vector
+
+    loader_updates = {p: v for p, v in spec.values if not p.startswith("load.")}
+    load_updates = {p.removeprefix("load."): v for p, v in spec.values if p.startswith("load.")}
+    loader, load = parameters.default_loader(), parameters.bucket_load(spec.load)
+    if loader_updates:
+        loader = parameters.replace(loader, loader_updates)
+    if load_updates:
+        load = parameters.replace(load, load_updates)
+    return plant_parameter_vector(loader, load, check=True), load
+
+
+def _course(study: Study, spec: SampleSpec) -> Any:
+    from loader_model.simulation.courses import iso8608_course, paper_course
+
+    if study.road == "course":
+        course = paper_course(
+            spec.speed_kmh, position_jitter_m=study.position_jitter_m, seed=spec.road_seed
+        )
+        return dataclasses.replace(course, speed_m_s=course.speed_m_s * spec.speed_factor)
+    speed = spec.speed_kmh * spec.speed_factor
+    return iso8608_course(
+        study.road_class, speed, length_m=study.road_length_m, seed=spec.road_seed
+    )
+
+
+def _metrics(result: Any) -> dict[str, float]:
+    evaluation = result.seat_evaluation()
+    rms = {axis.axis: float(axis.weighted_rms) for axis in evaluation.axes}
+    period = float(result.metadata["period_s"])
+    saturated = sum(
+        e.end_s - e.start_s + period for e in result.events if e.kind == "pump_saturation"
+    )
+    return {
+        **{f"a_w_{axis}": rms.get(axis, math.nan) for axis in AXES},
+        "a_total": float(evaluation.total_m_s2),
+        "p_A_max_Pa": float(np.max(result["p_A"])),
+        "p_A_min_Pa": float(np.min(result["p_A"])),
+        "p_B_max_Pa": float(np.max(result["p_B"])),
+        "pump_saturation_s": float(saturated),
+        "tyre_lift_offs": float(sum(e.kind == "tyre_off_ground" for e in result.events)),
+    }
+
+
+_EMPTY = dict.fromkeys(
+    [*(f"a_w_{a}" for a in AXES), "a_total", "p_A_max_Pa", "p_A_min_Pa", "p_B_max_Pa"]
+    + ["pump_saturation_s", "tyre_lift_offs"],
+    math.nan,
+)
+
+
+def _reason(error: BaseException) -> str:
+    return f"{type(error).__name__}: {error}"[:500]
+
+
+def _run(study: Study, gains: Gains, name: str, params: np.ndarray, load: Any, road: Any) -> dict:
+    from loader_model.control.settings import default_settings
+    from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
+    from loader_model.simulation.ride_control import controller_setup
+
+    if name == "passive":
+        params = params.copy()
+        params[PLANT_PARAMETER_NAMES.index("accumulator_on")] = 1.0
+    if name in ("baseline", "passive"):
+        from loader_model.plant.equilibrium import static_state
+
+        arguments: dict[str, Any] = {
+            "controller": _controller("hold"),
+            "settings": [static_state(params)[1]],
+        }
+    else:
+        kind = "virtual-accumulator" if name == "virtual-accumulator" else "skyhook"
+        settings = default_settings()
+        if name in gains:
+            settings = dataclasses.replace(settings, k_fb=gains[name][load.name])
+        vector, state = controller_setup(kind, params, load.pressure_normalisation, settings)
+        arguments = {
+            "controller": _controller(kind),
+            "settings": vector,
+            "controller_state": state,
+        }
+    result = simulate(road, params, duration_s=study.duration_s, **arguments)
+    return _metrics(result)
+
+
+def run_sample(study: Study, gains: Gains, spec: SampleSpec) -> list[dict[str, Any]]:
+    """Rows of one sample, one per controller of the study (module notes)."""
+    head = {
+        "sample": spec.index,
+        "speed_kmh": spec.speed_kmh,
+        "speed_factor": spec.speed_factor,
+        "load": spec.load,
+        "road_seed": spec.road_seed,
+        **dict(spec.values),
+    }
+    rows = []
+    try:
+        params, load = sample_plant_vector(spec)
+        road = course_input(_course(study, spec), params)
+        setup_error = None
+    except Exception as error:  # a failed sample never stops the study
+        setup_error = _reason(error)
+    poles: dict[str, float] = {}
+    if setup_error is None and gains:
+        try:
+            speed = spec.speed_kmh * spec.speed_factor
+            gain_list = [gains[n][spec.load] for n in gains]
+            reals = max_pole_real(params, spec.load, speed, study.road_class, gain_list)
+            poles = dict(zip(gains, reals, strict=True))
+        except Exception:  # noqa: BLE001 - the margin is reported as missing
+            poles = {}
+    for name in study.controllers:
+        row = {**head, "controller": name, **_EMPTY, "max_pole_real": poles.get(name, math.nan)}
+        if setup_error is not None:
+            row |= {"failed": True, "reason": setup_error}
+        else:
+            try:
+                row |= _run(study, gains, name, params, _Load(spec.load, load), road)
+                row |= {"failed": False, "reason": ""}
+            except Exception as error:  # a failed run never stops the study
+                row |= {"failed": True, "reason": _reason(error)}
+        rows.append(row)
+    baseline = rows[0]["a_total"]
+    for row in rows:
+        row["change_percent"] = 100.0 * (row["a_total"] - baseline) / baseline
+    return rows
+
+
+@dataclasses.dataclass(frozen=True)
+class _Load:
+    name: str
+    load: Any
+
+    @property
+    def pressure_normalisation(self) -> float:
+        return float(self.load.pressure_normalisation)
+
+
+def run_batch(study: Study, gains: Gains, specs: list[SampleSpec]) -> list[dict[str, Any]]:
+    """Rows of several samples, in order (one engine task)."""
+    return [row for spec in specs for row in run_sample(study, gains, spec)]
