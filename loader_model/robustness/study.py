@@ -262,7 +262,7 @@ def _build(data: dict[str, Any], load_cases: tuple[str, ...], course_speeds: tup
         seed=_integer(study.get("seed", 0), "study.seed", 0, 2**63 - 1),
         samples=samples,
         sampling=sampling,
-        duration_s=_number(study.get("duration_s", 10.0), "study.duration_s", 0.1, 600.0),
+        duration_s=_number(study.get("duration_s", 10.0), "study.duration_s", 3.0, 600.0),
         batch_size=_integer(study.get("batch_size", 16), "study.batch_size", 1, 100_000),
         road=kind,
         road_class=road_class,
