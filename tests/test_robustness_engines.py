@@ -1,0 +1,112 @@
+"""Robustness study engines (issue 14): identical tables on every engine, dead workers lose nothing.
+
+Slow: each test runs real 3 s simulations on spawned worker processes or a Dask ``LocalCluster``
+(about 15-40 s each on the shared 2-core machine).
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+import signal
+import threading
+import time
+from pathlib import Path
+
+import pytest
+
+from loader_model.robustness.engine import run_study
+from loader_model.robustness.study import parse_study
+
+pytestmark = pytest.mark.slow
+
+STUDY = """
+[study]
+name = "engines"
+seed = 11
+samples = 6
+duration_s = 3.0
+batch_size = 1
+[conditions]
+speeds_kmh = [18.0]
+[controllers]
+compare = ["skyhook"]
+[parameters]
+"hydraulics.bulk_modulus" = { distribution = "uniform", low = 0.8e9, high = 1.8e9, unit = "Pa" }
+"pump.natural_frequency" = { distribution = "uniform", low = 15.0, high = 30.0, unit = "Hz" }
+"""
+
+
+@pytest.fixture(scope="module")
+def reference(tmp_path_factory) -> Path:
+    """The study run in this process (1 worker): its results folder."""
+    folder = tmp_path_factory.mktemp("reference") / "one"
+    table = run_study(parse_study(STUDY), folder, workers=1, progress=False)
+    assert table.num_rows == 12 and not any(table.column("failed").to_pylist())
+    return folder
+
+
+def _same(folder: Path, reference: Path) -> None:
+    for name in ("results.csv", "results.parquet"):
+        assert (folder / name).read_bytes() == (reference / name).read_bytes(), name
+
+
+def _cluster():
+    from distributed import Client, LocalCluster
+
+    cluster = LocalCluster(
+        processes=True, n_workers=2, threads_per_worker=1, dashboard_address=None
+    )
+    return cluster, Client(cluster)
+
+
+def test_same_table_with_two_local_workers_and_on_dask(tmp_path: Path, reference: Path) -> None:
+    study = parse_study(STUDY)
+    run_study(study, tmp_path / "two", workers=2, progress=False)
+    _same(tmp_path / "two", reference)
+    cluster, client = _cluster()
+    with cluster, client:
+        run_study(study, tmp_path / "dask", scheduler=client, progress=False)
+    _same(tmp_path / "dask", reference)
+
+
+def _kill_after_first_part(folder: Path, pids, seen: list[int]) -> threading.Thread:
+    def kill() -> None:
+        deadline = time.monotonic() + 300
+        while time.monotonic() < deadline:
+            parts = list((folder / "parts").glob("part-*.parquet"))
+            if parts:
+                seen.append(len(parts))
+                os.kill(pids()[0], signal.SIGKILL)
+                return
+            time.sleep(0.05)
+
+    thread = threading.Thread(target=kill, daemon=True)
+    thread.start()
+    return thread
+
+
+def test_killed_local_worker_loses_no_finished_result(tmp_path: Path, reference: Path) -> None:
+    study, folder, seen = parse_study(STUDY), tmp_path / "killed", []
+    thread = _kill_after_first_part(
+        folder, lambda: [p.pid for p in multiprocessing.active_children()], seen
+    )
+    with pytest.raises(ValueError, match=r"worker process died.*run the same study"):
+        run_study(study, folder, workers=2, progress=False)
+    thread.join()
+    saved = len(list((folder / "parts").glob("part-*.parquet")))
+    assert 1 <= seen[0] <= saved < 6
+    run_study(study, folder, workers=2, progress=False)
+    _same(folder, reference)
+
+
+def test_killed_dask_worker_loses_no_finished_result(tmp_path: Path, reference: Path) -> None:
+    study, folder, seen = parse_study(STUDY), tmp_path / "dask-killed", []
+    cluster, client = _cluster()
+    with cluster, client:
+        pids = list(client.run(os.getpid).values())
+        thread = _kill_after_first_part(folder, lambda: pids, seen)
+        run_study(study, folder, scheduler=client, progress=False)
+        thread.join()
+    assert seen and seen[0] < 6
+    _same(folder, reference)
