@@ -40,6 +40,7 @@ def test_example_study_is_valid_and_names_every_controller() -> None:
         "skyhook",
         "lqr",
         "optimised",
+        "robust",
     )
     assert study.parameters[0][0] == "hydraulics.bulk_modulus"
 

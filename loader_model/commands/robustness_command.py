@@ -3,10 +3,11 @@ speeds and bucket loads, from a study file (TOML; README "Robustness study", exa
 ``loader_model/data/robustness_example.toml``).
 
 Writes into the results folder: ``parts/`` (one Parquet file per finished batch; a rerun resumes
-from them), ``results.parquet`` and ``results.csv`` (one row per sample and controller) and
-``report.md`` (change of a_total per controller, probability of worse comfort, worst cases,
-Spearman rank correlations, stability margin of the gains, failures). The study file is checked
-completely before anything runs or is written.
+from them), ``results.parquet`` and ``results.csv`` (one row per sample and controller),
+``gains.json`` (the K_fb each gain-based controller ran with) and ``report.md`` (change of a_total
+per controller, probability of worse comfort, worst cases, Spearman rank correlations, stability
+margin of the gains, failures). The study file is checked completely before anything runs or is
+written.
 """
 
 from __future__ import annotations
@@ -62,13 +63,13 @@ def run(args: argparse.Namespace) -> int:
     if not folder.parent.is_dir():
         raise ValueError(f"--output {str(folder)!r}: the folder {str(folder.parent)!r} is missing")
     from loader_model.export import write_atomically
-    from loader_model.robustness.engine import run_study
+    from loader_model.robustness.engine import read_gains, run_study
     from loader_model.robustness.report import report_text
 
     table = run_study(
         study, folder, workers=workers, scheduler=args.scheduler, progress=not args.no_progress
     )
-    text = report_text(study, table)
+    text = report_text(study, table, read_gains(folder))
     write_atomically(
         folder / "report.md",
         lambda path: path.write_text(text, encoding="utf-8"),

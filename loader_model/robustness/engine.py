@@ -4,7 +4,8 @@ The samples (:func:`~loader_model.robustness.sampling.sample_specs`) and the gai
 (:func:`~loader_model.robustness.gains.resolve_gains`) are planned once, here; each task runs a
 batch of ``study.batch_size`` samples (:func:`~loader_model.robustness.runner.run_batch`) so that
 scheduling costs little beside the simulations, and the rows of each finished batch are written at
-once, atomically, as one Parquet part file in ``FOLDER/parts``. A rerun on the same folder skips
+once, atomically, as one Parquet part file in ``FOLDER/parts``; the resolved gains go to
+``FOLDER/gains.json``. A rerun on the same folder skips
 the samples already saved (resume after an interruption or a dead worker); a folder of another
 study is refused. At the end the parts are combined, sorted by sample and controller, into
 ``results.parquet`` and ``results.csv``.
@@ -30,7 +31,7 @@ from loader_model.robustness.sampling import SampleSpec, sample_specs
 from loader_model.robustness.study import Study
 from loader_model.robustness.table import combine_parts, read_parts, write_part
 
-__all__ = ["fingerprint", "run_study"]
+__all__ = ["fingerprint", "read_gains", "run_study"]
 
 _SINGLE_THREAD = {"OMP_NUM_THREADS": "1", "OPENBLAS_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
 
@@ -121,6 +122,24 @@ def _dask(study: Study, gains: Gains, batches: list, scheduler: Any, save: Any) 
             client.close()
 
 
+def _write_gains(path: Path, gains: Gains) -> None:
+    import json
+
+    from loader_model.export import write_atomically
+
+    text = json.dumps(gains, indent=1, sort_keys=True) + "\n"
+    write_atomically(path, lambda t: t.write_text(text, encoding="utf-8"), (".json",), "gains")
+
+
+def read_gains(folder: str | Path) -> Gains:
+    """The K_fb per controller and load a study in ``folder`` ran with (``gains.json``; empty
+    if the study has no gain-based controller or has not started)."""
+    import json
+
+    path = Path(folder) / "gains.json"
+    return json.loads(path.read_text(encoding="utf-8")) if path.exists() else {}
+
+
 def run_study(
     study: Study,
     folder: str | Path,
@@ -163,6 +182,7 @@ def run_study(
     batches = _batches(specs, done, study.batch_size)
     if batches:
         gains = resolve_gains(study) if gains is None else gains
+        _write_gains(folder / "gains.json", gains)
     bar = tqdm(
         total=len(specs),
         initial=len(done),

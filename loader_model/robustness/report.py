@@ -84,8 +84,9 @@ def _quantiles(values: np.ndarray) -> str:
     return f"mean {values.mean():+.1f} %, 5 % {q5:+.1f}, median {q50:+.1f}, 95 % {q95:+.1f}"
 
 
-def report_text(study: Study, table: Any) -> str:
-    """The Markdown report of a finished study."""
+def report_text(study: Study, table: Any, gains: dict | None = None) -> str:
+    """The Markdown report of a finished study (``gains``: K_fb per controller and load, as
+    :func:`~loader_model.robustness.engine.read_gains` returns them, listed when given)."""
     lines = [
         f"# Robustness study: {study.name}",
         "",
@@ -111,6 +112,8 @@ def report_text(study: Study, table: Any) -> str:
             f"- failed runs: {s['failed']}"
             + "".join(f"\n  - {n} × {reason}" for reason, n in s["reasons"].most_common(3)),
         ]
+        for load, gain in (gains or {}).get(controller, {}).items():
+            lines.append(f"- K_fb ({load}): [{', '.join(f'{g:.4g}' for g in gain)}]")
         if s["max_pole_real"].size:
             poles = s["max_pole_real"]
             lines.append(
