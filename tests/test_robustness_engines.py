@@ -129,3 +129,22 @@ def test_robust_gains_are_stable_on_a_fresh_sample(tmp_path: Path) -> None:
     assert len(robust) == 3 and max(robust) < -0.1
     assert min(table3) > 0.0
     assert not any(r["failed"] for r in rows)
+
+
+def test_command_runs_the_study_and_writes_table_gains_and_report(tmp_path: Path, capsys) -> None:
+    from loader_model.cli import main
+
+    study = tmp_path / "study.toml"
+    study.write_text(STUDY.replace("samples = 6", "samples = 2"), encoding="utf-8")
+    output = tmp_path / "out"
+    arguments = ["robustness", str(study), "--output", str(output), "--workers", "1"]
+    assert main([*arguments, "--no-progress"]) == 0
+    out = capsys.readouterr().out
+    assert "## skyhook" in out and "probability of worse comfort" in out
+    assert "K_fb (empty): [2.75, 5.1, -4, -0.22]" in out
+    names = sorted(p.name for p in output.iterdir())
+    expected = "gains.json parts report.md results.csv results.parquet study.sha256"
+    assert names == expected.split()
+    header = (output / "results.csv").read_text(encoding="utf-8").splitlines()[0]
+    assert header.startswith('"sample","controller","speed_kmh"')
+    assert '"hydraulics.bulk_modulus"' in header and '"a_w_pitch"' in header

@@ -172,3 +172,43 @@ def test_an_interrupted_study_resumes_to_the_same_table(tmp_path: Path, monkeypa
     other = parse_study(TINY.replace("seed = 7", "seed = 9"))
     with pytest.raises(ValueError, match="holds results of another study"):
         engine.run_study(other, folder, progress=False, gains={})
+
+
+def test_wilson_interval_closed_forms() -> None:
+    from loader_model.robustness.report import wilson_interval
+
+    z2 = 1.959964**2
+    # 0 of n: (0, z²/(n + z²)); n of n mirrors it; k of 2k is symmetric about 1/2
+    assert wilson_interval(0, 10) == pytest.approx((0.0, z2 / (10 + z2)), rel=1e-12)
+    assert wilson_interval(10, 10) == pytest.approx((10 / (10 + z2), 1.0), rel=1e-12)
+    low, high = wilson_interval(5, 10)
+    assert low + high == pytest.approx(1.0, rel=1e-12) and low == pytest.approx(0.2366, abs=1e-4)
+
+
+def test_report_counts_worse_runs_and_ranks_the_parameter_that_drives_them() -> None:
+    import pyarrow as pa
+
+    from loader_model.robustness.report import controller_summary, report_text
+    from loader_model.robustness.table import result_schema
+
+    study = parse_study(TINY)
+    rows = []
+    for i in range(10):
+        base = {"sample": i, "speed_kmh": 18.0, "speed_factor": 1.0, "load": "full"}
+        base |= {"hydraulics.bulk_modulus": 1e9 + 1e7 * i, "load.mass": 500.0 - 9.0 * (i % 3)}
+        for name, change in (("baseline", 0.0), ("virtual-accumulator", i - 4.5)):
+            rows.append(
+                base
+                | {"controller": name, "a_total": 1.0 + change / 100, "change_percent": change}
+                | {"max_pole_real": math.nan, "failed": False, "reason": "", "road_seed": 1}
+            )
+    rows[-1] |= {"failed": True, "reason": "SimulationError: left the finite numbers"}
+    table = pa.Table.from_pylist(rows, schema=result_schema(study))
+    summary = controller_summary(study, table, "virtual-accumulator")
+    assert summary["evaluated"] == 9 and summary["failed"] == 1
+    assert summary["p_worse"] == pytest.approx(4 / 9, rel=1e-12)
+    assert next(iter(summary["sensitivity"])) == "hydraulics.bulk_modulus"
+    assert summary["sensitivity"]["hydraulics.bulk_modulus"] == pytest.approx(1.0, rel=1e-12)
+    assert [r["sample"] for r in summary["worst"]] == [8, 7, 6]
+    text = report_text(study, table, {"virtual-accumulator": {}})
+    assert "probability of worse comfort: 0.444" in text and "1 × SimulationError" in text

@@ -123,7 +123,10 @@ def _reason(error: BaseException) -> str:
     return f"{type(error).__name__}: {error}"[:500]
 
 
-def _run(study: Study, gains: Gains, name: str, params: np.ndarray, load: Any, road: Any) -> dict:
+def _run(
+    study: Study, gains: Gains, name: str, params: np.ndarray, load: tuple[str, float], road: Any
+) -> dict:
+    """Simulate controller ``name`` on one plant; ``load`` is (case, pressure norm ‖p_A‖ in Pa)."""
     from loader_model.control.settings import default_settings
     from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
     from loader_model.simulation.ride_control import controller_setup
@@ -142,8 +145,8 @@ def _run(study: Study, gains: Gains, name: str, params: np.ndarray, load: Any, r
         kind = "virtual-accumulator" if name == "virtual-accumulator" else "skyhook"
         settings = default_settings()
         if name in gains:
-            settings = dataclasses.replace(settings, k_fb=gains[name][load.name])
-        vector, state = controller_setup(kind, params, load.pressure_normalisation, settings)
+            settings = dataclasses.replace(settings, k_fb=gains[name][load[0]])
+        vector, state = controller_setup(kind, params, load[1], settings)
         arguments = {
             "controller": _controller(kind),
             "settings": vector,
@@ -185,7 +188,8 @@ def run_sample(study: Study, gains: Gains, spec: SampleSpec) -> list[dict[str, A
             row |= {"failed": True, "reason": setup_error}
         else:
             try:
-                row |= _run(study, gains, name, params, _Load(spec.load, load), road)
+                case = (spec.load, float(load.pressure_normalisation))
+                row |= _run(study, gains, name, params, case, road)
                 row |= {"failed": False, "reason": ""}
             except Exception as error:  # a failed run never stops the study
                 row |= {"failed": True, "reason": _reason(error)}
@@ -194,16 +198,6 @@ def run_sample(study: Study, gains: Gains, spec: SampleSpec) -> list[dict[str, A
     for row in rows:
         row["change_percent"] = 100.0 * (row["a_total"] - baseline) / baseline
     return rows
-
-
-@dataclasses.dataclass(frozen=True)
-class _Load:
-    name: str
-    load: Any
-
-    @property
-    def pressure_normalisation(self) -> float:
-        return float(self.load.pressure_normalisation)
 
 
 def run_batch(study: Study, gains: Gains, specs: list[SampleSpec]) -> list[dict[str, Any]]:
