@@ -65,8 +65,8 @@ def test_same_table_with_two_local_workers_and_on_dask(tmp_path: Path, reference
     run_study(study, tmp_path / "two", workers=2, progress=False)
     _same(tmp_path / "two", reference)
     cluster, client = _cluster()
-    with cluster, client:
-        run_study(study, tmp_path / "dask", scheduler=client, progress=False)
+    with cluster, client:  # by address, as for a cluster started elsewhere (dask-jobqueue)
+        run_study(study, tmp_path / "dask", scheduler=cluster.scheduler_address, progress=False)
     _same(tmp_path / "dask", reference)
 
 

@@ -66,9 +66,21 @@ def run(args: argparse.Namespace) -> int:
     from loader_model.robustness.engine import read_gains, run_study
     from loader_model.robustness.report import report_text
 
-    table = run_study(
-        study, folder, workers=workers, scheduler=args.scheduler, progress=not args.no_progress
-    )
+    client = None
+    if args.scheduler is not None:  # connect before writing anything
+        from distributed import Client
+
+        try:
+            client = Client(args.scheduler, timeout="20s")
+        except (OSError, ValueError) as error:
+            raise ValueError(f"--scheduler {args.scheduler!r}: cannot connect: {error}") from None
+    try:
+        table = run_study(
+            study, folder, workers=workers, scheduler=client, progress=not args.no_progress
+        )
+    finally:
+        if client is not None:
+            client.close()
     text = report_text(study, table, read_gains(folder))
     write_atomically(
         folder / "report.md",

@@ -105,15 +105,11 @@ def _local(study: Study, gains: Gains, batches: list, workers: int, save: Any) -
 def _dask(study: Study, gains: Gains, batches: list, scheduler: Any, save: Any) -> None:
     from distributed import Client, as_completed
 
+    from loader_model.robustness.runner import run_batch
+
     client = scheduler if isinstance(scheduler, Client) else Client(scheduler)
     try:
-        key = fingerprint(study)[:12]
-        futures = {}
-        for batch in batches:
-            name = f"robustness-{key}-{batch[0].index}"
-            from loader_model.robustness.runner import run_batch
-
-            futures[client.submit(run_batch, study, gains, batch, key=name, pure=False)] = batch
+        futures = {client.submit(run_batch, study, gains, b, pure=False): b for b in batches}
         for future in as_completed(futures):
             save(futures[future], future.result())
             future.release()
