@@ -148,3 +148,28 @@ def test_command_runs_the_study_and_writes_table_gains_and_report(tmp_path: Path
     header = (output / "results.csv").read_text(encoding="utf-8").splitlines()[0]
     assert header.startswith('"sample","controller","speed_kmh"')
     assert '"hydraulics.bulk_modulus"' in header and '"a_w_pitch"' in header
+
+
+def test_sample_runs_equal_the_table6_trials_and_sensor_errors_act() -> None:
+    """A sample with nothing varied reproduces :func:`run_trial` of the Table 6 experiment bit for
+    bit (the baseline's command as a setting and the sensor-error wrapper change nothing), and a
+    sensor offset changes only the controllers that read it."""
+    import dataclasses
+
+    from loader_model.experiments.trials import TrialSpec, run_trial
+    from loader_model.robustness.gains import resolve_gains
+    from loader_model.robustness.runner import run_sample
+    from loader_model.robustness.sampling import SampleSpec
+
+    text = STUDY.replace("samples = 6", "samples = 1").replace("duration_s = 3.0", "duration_s = 4")
+    text = text.replace('compare = ["skyhook"]', 'compare = ["virtual-accumulator", "skyhook"]')
+    study = parse_study(text.replace("speeds_kmh = [18.0]", "speeds_kmh = [9.0]"))
+    spec = SampleSpec(0, 9.0, 1.0, "full", (), 0)
+    rows = run_sample(study, resolve_gains(study), spec)
+    for row in rows:
+        trial = run_trial(TrialSpec(9.0, "full", row["controller"], 0, 1.0, 0, 4.0))
+        assert row["a_total"] == trial.a_total_m_s2, row["controller"]
+    biased = dataclasses.replace(spec, values=(("sensors.f_Hy.offset", 0.5),))
+    changed = run_sample(study, resolve_gains(study), biased)
+    assert changed[0]["a_total"] == rows[0]["a_total"]  # the baseline reads no sensor
+    assert changed[2]["a_total"] != rows[2]["a_total"]  # the skyhook integrates the bias

@@ -54,12 +54,23 @@ def test_example_study_is_valid_and_names_every_controller() -> None:
         (('unit = "Pa"', 'unit = "bar"'), "the parameter file's unit is 'Pa'"),
         (("low = 200.0", "low = 0.0"), r"load.mass.low = 0 kg is outside .*\(0, 15000\]"),
         (('"load.mass"', '"geometry.A"'), "only scalar real parameters"),
+        (
+            (
+                '"load.mass" = { distribution = "normal", mean = 500.0, std = 100.0, low = 200.0, '
+                'high = 800.0, unit = "kg" }',
+                '"sensors.phi.offset" = { distribution = "uniform", '
+                'low = -1.0, high = 0.0, unit = "rad" }',
+            ),
+            r"phi.offset.low = -1 rad .*33 deg",
+        ),
         (("speeds_kmh = [18.0]", "speeds_kmh = [12.0]"), r"12.0 is not allowed; allowed: \[9.0"),
         (('compare = ["virtual', 'compare = ["semi'), "'semi-accumulator' is not allowed"),
         (("[conditions]", "[conditions]\nspeed = 3"), "conditions.speed: unknown key"),
         (('"uniform"', '"gamma"'), r"distribution = 'gamma': allowed: \['uniform'"),
         (("std = 100.0", "std = -1.0"), r"std = -1: allowed: a number > 0"),
         (("duration_s = 3.0", "duration_s = 1.0"), "study.duration_s = 1.0: allowed"),
+        (('"load.mass"', '"sensors.p_A.gain"'), "sensors.p_A.gain.unit = 'kg': .* unit is '-'"),
+        (('"load.mass"', '"sensors.p_A.offst"'), "did you mean 'sensors.p_A.offset'"),
     ],
 )
 def test_bad_study_files_name_key_value_and_what_is_allowed(change, message) -> None:
@@ -121,7 +132,7 @@ def test_failed_samples_are_recorded_with_their_reason(monkeypatch) -> None:
     assert all(r["failed"] for r in rows) and "bulk_modulus" in rows[0]["reason"]
     assert all(math.isnan(r["a_total"]) for r in rows)
 
-    def fake(study, gains, name, params, load, road):
+    def fake(study, gains, name, params, load, road, errors):
         if name == "virtual-accumulator":
             raise SimulationError("the integration left the finite numbers at t = 1.2 s")
         return {"a_total": 2.0}

@@ -19,6 +19,8 @@ from typing import Any
 
 import numpy as np
 
+from loader_model.parameter_fields import Range
+
 __all__ = ["DISTRIBUTIONS", "Distribution", "parse_distribution"]
 
 #: Distribution name -> its parameters besides ``unit``.
@@ -70,8 +72,8 @@ class Distribution:
         return stats.triang.ppf(u, (self.mode - self.low) / width, loc=self.low, scale=width)
 
 
-def parse_distribution(spec: Any, key: str, cls: type, field: str) -> Distribution:
-    """Check ``spec`` (a TOML inline table) against the field ``field`` of parameter class ``cls``.
+def parse_distribution(spec: Any, key: str, unit: str, allowed: Range) -> Distribution:
+    """Check ``spec`` (a TOML inline table) against a parameter's SI ``unit`` and ``allowed`` range.
 
     Raises
     ------
@@ -80,10 +82,6 @@ def parse_distribution(spec: Any, key: str, cls: type, field: str) -> Distributi
         non-finite numbers, a unit other than the parameter file's, an empty support, or a support
         outside the field's validated range (with its reason).
     """
-    from loader_model.parameter_toml import leaf_metadata
-
-    metadata = leaf_metadata(cls, field)
-    unit, allowed = metadata["unit"], metadata["allowed"]
     if not isinstance(spec, dict):
         raise ValueError(
             f"{key} = {spec!r}: allowed: a table {{ distribution = ..., ..., unit = {unit!r} }}"

@@ -19,6 +19,7 @@ import numpy as np
 
 from loader_model.robustness.gains import Gains, max_pole_real
 from loader_model.robustness.sampling import SampleSpec
+from loader_model.robustness.sensors import corrupted_fixed_point, sensor_controller, sensor_errors
 from loader_model.robustness.study import Study
 from loader_model.simulation.simulator import course_input, simulate
 
@@ -27,33 +28,30 @@ __all__ = ["AXES", "run_batch", "run_sample", "sample_plant_vector"]
 #: ISO 2631-1 axes of the seat evaluation (x = fore-aft, z = vertical, pitch).
 AXES: tuple[str, ...] = ("x", "z", "pitch")
 _CONTROLLERS: dict[str, Any] = {}
+_IDEAL = np.array([1.0] * 5 + [0.0] * 5)
 
 
-def _controller(kind: str) -> Any:
-    """The controller Function of ``kind``, built once per process.
+def _hold_controller() -> Any:
+    """The baseline's constant command, taken from its one setting, built once per process.
 
-    ``hold``: the baseline's constant command, taken from its one setting instead of being a
-    constant of the Function (:func:`~loader_model.simulation.controllers.hold_controller` bakes
-    u0 in, so every sampled plant would compile a new period).
+    :func:`~loader_model.simulation.controllers.hold_controller` bakes u0 into the Function, so
+    every sampled plant would compile a new period; here u0 is a setting.
     """
     import casadi as ca
 
-    from loader_model.simulation.ride_control import plant_controller
+    from loader_model.plant.plant import OUTPUT_NAMES
 
-    if kind not in _CONTROLLERS:
-        if kind == "hold":
-            z, settings = ca.SX.sym("z", 0), ca.SX.sym("settings", 1)
-            y = ca.SX.sym("y", plant_controller("skyhook").size1_in(1))
-            _CONTROLLERS[kind] = ca.Function(
-                "hold_setting",
-                [z, y, settings],
-                [z, settings[0]],
-                ["z", "y", "settings"],
-                ["z_next", "u"],
-            )
-        else:
-            _CONTROLLERS[kind] = plant_controller(kind)
-    return _CONTROLLERS[kind]
+    if "hold" not in _CONTROLLERS:
+        z, y = ca.SX.sym("z", 0), ca.SX.sym("y", len(OUTPUT_NAMES))
+        settings = ca.SX.sym("settings", 1)
+        _CONTROLLERS["hold"] = ca.Function(
+            "hold_setting",
+            [z, y, settings],
+            [z, settings[0]],
+            ["z", "y", "settings"],
+            ["z_next", "u"],
+        )
+    return _CONTROLLERS["hold"]
 
 
 def sample_plant_vector(spec: SampleSpec) -> tuple[np.ndarray, Any]:
@@ -67,8 +65,9 @@ def sample_plant_vector(spec: SampleSpec) -> tuple[np.ndarray, Any]:
     from loader_model import parameters
     from loader_model.plant.plant_parameters import plant_parameter_vector
 
-    loader_updates = {p: v for p, v in spec.values if not p.startswith("load.")}
-    load_updates = {p.removeprefix("load."): v for p, v in spec.values if p.startswith("load.")}
+    plant = [(p, v) for p, v in spec.values if not p.startswith("sensors.")]
+    loader_updates = {p: v for p, v in plant if not p.startswith("load.")}
+    load_updates = {p.removeprefix("load."): v for p, v in plant if p.startswith("load.")}
     loader, load = parameters.default_loader(), parameters.bucket_load(spec.load)
     if loader_updates:
         loader = parameters.replace(loader, loader_updates)
@@ -124,9 +123,16 @@ def _reason(error: BaseException) -> str:
 
 
 def _run(
-    study: Study, gains: Gains, name: str, params: np.ndarray, load: tuple[str, float], road: Any
+    study: Study,
+    gains: Gains,
+    name: str,
+    params: np.ndarray,
+    load: tuple[str, float],
+    road: Any,
+    errors: np.ndarray,
 ) -> dict:
-    """Simulate controller ``name`` on one plant; ``load`` is (case, pressure norm ‖p_A‖ in Pa)."""
+    """Simulate controller ``name`` on one plant; ``load`` is (case, pressure norm ‖p_A‖ in Pa),
+    ``errors`` the sensor errors (:func:`~loader_model.robustness.sensors.sensor_errors`)."""
     from loader_model.control.settings import default_settings
     from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
     from loader_model.simulation.ride_control import controller_setup
@@ -138,7 +144,7 @@ def _run(
         from loader_model.plant.equilibrium import static_state
 
         arguments: dict[str, Any] = {
-            "controller": _controller("hold"),
+            "controller": _hold_controller(),
             "settings": [static_state(params)[1]],
         }
     else:
@@ -147,9 +153,11 @@ def _run(
         if name in gains:
             settings = dataclasses.replace(settings, k_fb=gains[name][load[0]])
         vector, state = controller_setup(kind, params, load[1], settings)
+        if np.any(errors != _IDEAL):
+            state = corrupted_fixed_point(kind, vector, params, errors)
         arguments = {
-            "controller": _controller(kind),
-            "settings": vector,
+            "controller": sensor_controller(kind),
+            "settings": np.concatenate([vector, errors]),
             "controller_state": state,
         }
     result = simulate(road, params, duration_s=study.duration_s, **arguments)
@@ -167,6 +175,7 @@ def run_sample(study: Study, gains: Gains, spec: SampleSpec) -> list[dict[str, A
         **dict(spec.values),
     }
     rows = []
+    errors = sensor_errors(dict(spec.values))
     try:
         params, load = sample_plant_vector(spec)
         road = course_input(_course(study, spec), params)
@@ -189,7 +198,7 @@ def run_sample(study: Study, gains: Gains, spec: SampleSpec) -> list[dict[str, A
         else:
             try:
                 case = (spec.load, float(load.pressure_normalisation))
-                row |= _run(study, gains, name, params, case, road)
+                row |= _run(study, gains, name, params, case, road, errors)
                 row |= {"failed": False, "reason": ""}
             except Exception as error:  # a failed run never stops the study
                 row |= {"failed": True, "reason": _reason(error)}

@@ -107,10 +107,12 @@ class Study:
         return ("baseline", *self.compare, *(name for name, _ in self.gains))
 
 
-def parameter_field(path: str) -> tuple[type, str]:
-    """The parameter dataclass and field name of a study parameter path.
+def parameter_field(path: str) -> tuple[str, Any]:
+    """The SI unit and validated range (:class:`~loader_model.parameter_fields.Range`) of a study
+    parameter path.
 
-    ``load.<field>`` is a field of the bucket-load file, anything else a dotted path of the loader
+    ``load.<field>`` is a field of the bucket-load file, ``sensors.<name>.gain|offset`` a sensor
+    error (:mod:`~loader_model.robustness.sensors`), anything else a dotted path of the loader
     file. Only scalar real fields can vary (not points, vectors or counts).
 
     Raises
@@ -120,7 +122,10 @@ def parameter_field(path: str) -> tuple[type, str]:
     """
     from loader_model.parameter_schema import BucketLoad, LoaderParameters
     from loader_model.parameter_toml import iter_leaves, leaf_metadata
+    from loader_model.robustness.sensors import SENSOR_ERROR_FIELDS
 
+    if path in SENSOR_ERROR_FIELDS:
+        return SENSOR_ERROR_FIELDS[path]
     leaves = {p: (c, n) for p, c, n in iter_leaves(LoaderParameters)}
     leaves |= {f"load.{p}": (c, n) for p, c, n in iter_leaves(BucketLoad)}
     scalar = [p for p, (c, n) in leaves.items() if _is_scalar(leaf_metadata(c, n))]
@@ -130,13 +135,15 @@ def parameter_field(path: str) -> tuple[type, str]:
                 f"parameters.{path}: only scalar real parameters can vary (not points, vectors "
                 "or counts)"
             )
-        close = difflib.get_close_matches(path, scalar, n=1, cutoff=0.5)
+        close = difflib.get_close_matches(path, [*scalar, *SENSOR_ERROR_FIELDS], n=1, cutoff=0.5)
         hint = f"; did you mean {close[0]!r}?" if close else ""
         raise ValueError(
             f"parameters.{path}: unknown parameter{hint} (names are the parameter files' "
-            "dotted paths, e.g. 'hydraulics.bulk_modulus', 'tyres.front.k_y', 'load.mass')"
+            "dotted paths, e.g. 'hydraulics.bulk_modulus', 'tyres.front.k_y', 'load.mass', or "
+            "'sensors.<f_Hx|f_Hy|f_Ny|phi|p_A>.<gain|offset>')"
         )
-    return leaves[path]
+    metadata = leaf_metadata(*leaves[path])
+    return metadata["unit"], metadata["allowed"]
 
 
 def _is_scalar(metadata: Mapping[str, Any]) -> bool:
@@ -255,8 +262,8 @@ def _build(data: dict[str, Any], load_cases: tuple[str, ...], course_speeds: tup
     parameters = _table(data, "parameters")
     varied = []
     for path, spec in parameters.items():
-        cls, field = parameter_field(path)
-        varied.append((path, parse_distribution(spec, f"parameters.{path}", cls, field)))
+        unit, allowed = parameter_field(path)
+        varied.append((path, parse_distribution(spec, f"parameters.{path}", unit, allowed)))
     return Study(
         name=str(study.get("name", "robustness study")),
         seed=_integer(study.get("seed", 0), "study.seed", 0, 2**63 - 1),
