@@ -90,13 +90,15 @@ def _course(study: Study, spec: SampleSpec) -> Any:
     )
 
 
-def _metrics(result: Any) -> dict[str, float]:
+def _metrics(result: Any, max_displacement: float) -> dict[str, float]:
+    """Seat values (Eq. 49, 50), pressure peaks, events. Pump saturation: the time the command
+    is at or beyond V_p,max (the controllers clip at the limit, so the simulator's
+    ``pump_saturation`` event, strictly beyond it, does not see them)."""
     evaluation = result.seat_evaluation()
     rms = {axis.axis: float(axis.weighted_rms) for axis in evaluation.axes}
     period = float(result.metadata["period_s"])
-    saturated = sum(
-        e.end_s - e.start_s + period for e in result.events if e.kind == "pump_saturation"
-    )
+    at_limit = np.abs(result["V_p_ref"]) >= max_displacement * (1.0 - 1e-9)
+    saturated = period * np.count_nonzero(at_limit)
     return {
         **{f"a_w_{axis}": rms.get(axis, math.nan) for axis in AXES},
         "a_total": float(evaluation.total_m_s2),
@@ -161,7 +163,7 @@ def _run(
             "controller_state": state,
         }
     result = simulate(road, params, duration_s=study.duration_s, **arguments)
-    return _metrics(result)
+    return _metrics(result, float(params[PLANT_PARAMETER_NAMES.index("V_p_max")]))
 
 
 def run_sample(study: Study, gains: Gains, spec: SampleSpec) -> list[dict[str, Any]]:

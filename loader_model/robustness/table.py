@@ -5,7 +5,7 @@ One row per sample and controller. Columns: ``sample``, ``controller``, the samp
 its parameter-file path (SI units), the seat's ISO 2631-1 weighted r.m.s. per axis ``a_w_x``,
 ``a_w_z``, ``a_w_pitch`` and ``a_total`` (Eq. 49, 50; m/s², rad/s² for pitch),
 ``change_percent`` (a_total against the same sample's baseline), peak pressures ``p_A_max_Pa``,
-``p_A_min_Pa``, ``p_B_max_Pa`` (gauge), ``pump_saturation_s`` (time with |V_p,ref| > V_p,max),
+``p_A_min_Pa``, ``p_B_max_Pa`` (gauge), ``pump_saturation_s`` (time with |V_p,ref| at or beyond V_p,max),
 ``tyre_lift_offs``, ``max_pole_real`` (largest real part of the plant-and-skyhook poles of the
 gain, rad/s; NaN for controllers without K_fb), ``failed`` and ``reason``.
 """
