@@ -13,6 +13,7 @@ sample's baseline:
   design of N (d + 2) samples);
 - the gains' stability margin: the largest real part of the plant-and-skyhook poles per sample
   (positive: the linearised closed loop is unstable) and the share of unstable samples;
+- the pump's time at its displacement limit and the highest piston-side pressure;
 - the failures and their reasons.
 """
 
@@ -47,6 +48,11 @@ def _inputs(study: Study, rows: list[dict[str, Any]]) -> dict[str, np.ndarray]:
     return inputs
 
 
+def _finite(values: list) -> np.ndarray:
+    array = np.array(values, dtype=float)
+    return array[np.isfinite(array)]
+
+
 def controller_summary(study: Study, table: Any, controller: str) -> dict[str, Any]:
     """Statistics of one controller against the baseline (module notes) as a dict."""
     from scipy.stats import spearmanr
@@ -74,6 +80,8 @@ def controller_summary(study: Study, table: Any, controller: str) -> dict[str, A
         "worst": sorted(ok, key=lambda r: -r["change_percent"])[:3],
         "sensitivity": dict(sorted(sensitivity.items(), key=lambda kv: -abs(kv[1]))),
         "max_pole_real": poles,
+        "pump_saturation_s": _finite([r["pump_saturation_s"] for r in ok]),
+        "p_A_max_Pa": _finite([r["p_A_max_Pa"] for r in ok]),
     }
 
 
@@ -112,6 +120,12 @@ def report_text(study: Study, table: Any, gains: dict | None = None) -> str:
             f"- failed runs: {s['failed']}"
             + "".join(f"\n  - {n} × {reason}" for reason, n in s["reasons"].most_common(3)),
         ]
+        if s["pump_saturation_s"].size and s["p_A_max_Pa"].size:
+            lines.append(
+                f"- pump at its limit on {np.mean(s['pump_saturation_s'] > 0):.1%} of the runs "
+                f"(mean {s['pump_saturation_s'].mean():.3f} s per run); highest p_A "
+                f"{s['p_A_max_Pa'].max() / 1e5:.1f} bar"
+            )
         for load, gain in (gains or {}).get(controller, {}).items():
             lines.append(f"- K_fb ({load}): [{', '.join(f'{g:.4g}' for g in gain)}]")
         if s["max_pole_real"].size:
