@@ -91,8 +91,21 @@ def main(samples: int = 128) -> int:
         f"  Dask / local wall-time ratio {dask / local:.3f} (goal overhead < 20 %: < 1.2); "
         f"steady-rate ratio local / Dask {steady_l / steady_d:.3f}"
     )
-    _cpu_per_run(study)
+    _in_fresh_process(samples)
     return 0
+
+
+def _in_fresh_process(samples: int) -> None:
+    """Run :func:`_cpu_per_run` in a new interpreter with one BLAS thread, as the workers have
+    (this process may have loaded a threaded BLAS already)."""
+    import os
+    import subprocess
+
+    environment = os.environ | dict.fromkeys(
+        ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"), "1"
+    )
+    command = [sys.executable, "-m", "tests.bench_robustness", str(samples), "--cpu"]
+    subprocess.run(command, env=environment, check=True)
 
 
 def _cpu_per_run(study) -> None:
@@ -116,4 +129,9 @@ def _cpu_per_run(study) -> None:
 
 
 if __name__ == "__main__":
+    if "--cpu" in sys.argv:
+        from loader_model.robustness.study import parse_study
+
+        _cpu_per_run(parse_study(STUDY.format(samples=int(sys.argv[1]))))
+        sys.exit(0)
     sys.exit(main(*(int(a) for a in sys.argv[1:2])))
