@@ -4,7 +4,7 @@ VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 
-.PHONY: setup regenerate calibrate lint test test-slow bench reproduce clean
+.PHONY: setup regenerate calibrate gains lint test test-slow bench reproduce clean
 
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
@@ -34,6 +34,10 @@ test: setup lint
 ## test-slow: the tests marked slow (full regeneration, independent derivation, wheel install)
 test-slow: setup
 	$(PY) -m pytest -m slow -q
+
+## gains: refine the skyhook gains on the nonlinear paper course (both loads, 9 km/h) and ship them
+gains: setup
+	$(VENV)/bin/loader-model design --method refine --evaluations 150 --output loader_model/data/controller_refined.toml
 
 ## bench: wall times of regeneration, import and model evaluation (medians, with ratios)
 bench: setup

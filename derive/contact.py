@@ -63,6 +63,7 @@ __all__ = [
     "contact_factor",
     "sliding_fraction",
     "unilateral",
+    "unilateral_potential",
 ]
 
 #: Fraction β of the friction limit below which the tyre sticks exactly (linear law).
@@ -77,6 +78,16 @@ def unilateral(force: sp.Expr, width: sp.Expr) -> sp.Expr:
         (force, force >= width),
         (0, force <= -width),
         ((force + width) ** 2 / (4 * width), True),
+    )
+
+
+def unilateral_potential(force: sp.Expr, width: sp.Expr) -> sp.Expr:
+    """W(F) = ∫ U(f) df from −∞ to F, U = :func:`unilateral`: the vertical tyre's elastic energy
+    times k_y at elastic force F = F_y0 − k_y u (so that d(W/k_y)/du = −U, a potential)."""
+    return sp.Piecewise(
+        (2 * width**2 / 3 + (force**2 - width**2) / 2, force >= width),
+        (0, force <= -width),
+        ((force + width) ** 3 / (12 * width), True),
     )
 
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import sympy as sp
 
 from derive.codegen import FunctionSpec, InputSpec, OutputSpec
+from derive.energy import mechanical_energy_spec
 from derive.mechanics import LoaderMechanics
 from derive.symbols import (
     ANCHORS,
@@ -292,4 +293,5 @@ def function_specs(mech: LoaderMechanics) -> list[FunctionSpec]:
                 OutputSpec("dy_dpdd", outputs.jacobian(pdd), f"({len(OUTPUT_NAMES)}, 4)"),
             ),
         ),
+        mechanical_energy_spec(mech, (_P, _PD, _XI, _W, _WD, _PAR)),
     ]

@@ -88,6 +88,10 @@ class LoaderMechanics:
     """(F_Ax, F_Ay, F_Bx, F_By): world-frame forces of the road on each axle, contact law."""
     anchor_rates: sp.Matrix
     """(ξ̇_A, ξ̇_B): sliding rates of the tyre anchors (:mod:`derive.contact`)."""
+    tyre_deflections: dict[str, sp.Matrix]
+    """Per axle: its displacement from its position at p = 0 minus the road displacement."""
+    tyre_slips: dict[str, sp.Matrix]
+    """Per axle: its velocity relative to the road rate input."""
     actuator_map: sp.Matrix
     """Q_act(p) = ∂x_cyl/∂p: generalised force of a unit cylinder force, Eq. 15, 16, 25."""
     disturbance_map: sp.Matrix
@@ -169,10 +173,13 @@ def derive_mechanics() -> LoaderMechanics:
     tyre_forces: list[sp.Expr] = []
     anchor_rates: list[sp.Expr] = []
     definitions: list[tuple[sp.Symbol, sp.Expr]] = []
+    deflections: dict[str, sp.Matrix] = {}
+    slips: dict[str, sp.Matrix] = {}
     mu, width, tau = P("mu_road"), P("F_transition"), P("tau_slip")
     for index, (axle, offset) in enumerate((("A", 0), ("B", 2))):
         deflection = positions[axle] - _point(axle) - ROAD[offset : offset + 2, 0]
         slip = velocity(axle) - ROAD_RATES[offset : offset + 2, 0]
+        deflections[axle], slips[axle] = deflection, slip
         k_x, k_y = P(f"k_{axle}x"), P(f"k_{axle}y")
         c_x, c_y = P(f"c_{axle}x"), P(f"c_{axle}y")
         spring = sp.Matrix([-k_x * deflection[0], P(f"F_{axle}y0") - k_y * deflection[1]])
@@ -230,6 +237,8 @@ def derive_mechanics() -> LoaderMechanics:
         contact_definitions=tuple(definitions),
         tyre_forces=sp.Matrix(tyre_forces),
         anchor_rates=sp.Matrix(anchor_rates),
+        tyre_deflections=deflections,
+        tyre_slips=slips,
         actuator_map=actuator_map,
         disturbance_map=disturbance_map,
         cylinder_length=cylinder_length,

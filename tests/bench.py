@@ -70,6 +70,7 @@ def main() -> int:
     _bench_plant(forward / calls)
     _bench_roads(solve)
     _bench_simulator()
+    _bench_matrix()
     _control_design()
     _comfort_design()
     bench_robustness.main()
@@ -229,9 +230,9 @@ def _control_design() -> None:
 
 
 def _scipy_closed_loop(road, params, duration_s: float) -> np.ndarray:
-    """The closed loop as users usually write it: the plant Function called with NumPy arrays per
-    right-hand side, ``solve_ivp(method="LSODA")`` over each 1 ms period, the (hold) controller
-    between periods. (Radau with its finite-difference Jacobian met NaN at the first board.)"""
+    """The earlier baseline: the CasADi plant Function called with NumPy arrays per right-hand
+    side, ``solve_ivp(method="LSODA")`` over each 1 ms period, the (hold) controller between
+    periods. (Radau with its finite-difference Jacobian met NaN at the first board.)"""
     from scipy.integrate import solve_ivp
 
     from loader_model.plant.equilibrium import static_state
@@ -267,12 +268,25 @@ def _scipy_closed_loop(road, params, duration_s: float) -> np.ndarray:
     return np.asarray(seats)
 
 
+#: Simulated span of the slower baselines: from rest over the first board with both axles (front
+#: axle at 1.93 s, rear at 2.41 s). The whole 20 s run would take about 7-10 minutes with lambdify
+#: "numpy" (20-30 s per simulated second on the development machine).
+BASELINE_SPAN_S = 3.0
+
+
 def _bench_simulator() -> None:
     """The closed-loop simulator (issue 12): one 20 s run over the paper's course at 9 km/h
-    (baseline controller, empty bucket), compiled ROS2 + mapaccum, against the scipy loop above."""
+    (baseline controller, empty bucket), compiled ROS2 + mapaccum, against the baseline of
+    tests/bench_baseline.py: SymPy lambdify + scipy solve_ivp per 1 ms period, with lambdify's
+    scalar ``"math"`` modules (the fastest variant) over the same 20 s; with ``"numpy"`` (as users
+    usually write it, 10 times slower) and Radau with the lambdified Jacobian over the first
+    :data:`BASELINE_SPAN_S`, compared per simulated second. All against the CVODES reference."""
+    from loader_model.plant.plant import OUTPUT_NAMES
     from loader_model.plant.plant_parameters import plant_parameter_vector
     from loader_model.simulation import paper_course
+    from loader_model.simulation.reference import reference_simulation
     from loader_model.simulation.simulator import course_input, simulate
+    from tests.bench_baseline import baseline_model, baseline_simulation, seat_agreement
 
     params = plant_parameter_vector(None, "empty")
     road = course_input(paper_course(9.0, settle_s=10.0), params)  # 22 s of road
@@ -282,20 +296,71 @@ def _bench_simulator() -> None:
     fast = _median_seconds(lambda: simulate(road, params, duration_s=20.0), 7)
     _report("simulate 20 s (goal: real-time factor>=300)", fast, unit="s")
     print(f"{'':<42}real-time factor {20.0 / fast:.0f}")
+    span = BASELINE_SPAN_S
+    fast_span = _median_seconds(lambda: simulate(road, params, duration_s=span), 7)
+    _report(f"simulate first {span:g} s", fast_span, unit="ms")
+
+    cases = {
+        "lambdify 'math' + LSODA, 20 s": ("math", False, "LSODA", 20.0),
+        f"lambdify 'numpy' + LSODA, {span:g} s": ("numpy", False, "LSODA", span),
+        f"'math' + Radau (jac), {span:g} s": ("math", True, "Radau", span),
+    }
+    runs = {}
+    for label, (modules, jacobian, method, duration) in cases.items():
+        start = time.perf_counter()
+        model = baseline_model(modules, jacobian=jacobian)
+        built = time.perf_counter() - start
+        start = time.perf_counter()
+        runs[label] = baseline_simulation(
+            road, params, duration_s=duration, method=method, model=model
+        )
+        slow = time.perf_counter() - start
+        evaluations = int(runs[label]["nfev"])
+        _report(f"baseline: {label}", slow, unit="s")
+        print(
+            f"{'':<42}derive + translate + lambdify {built:.1f} s; {evaluations} right-hand "
+            f"sides, {slow / evaluations * 1e3:.2f} ms each with solve_ivp"
+        )
+        same_run = "the same 20 s run" if duration == 20.0 else f"per simulated second, {span:g} s"
+        print(
+            f"{'':<42}simulator is {(slow / duration) / (fast / 20.0):.0f} x faster ({same_run}; "
+            f"goal >= 8 x)"
+        )
     start = time.perf_counter()
-    _scipy_closed_loop(road, params, 20.0)
-    baseline = time.perf_counter() - start
-    _report("baseline: scipy LSODA per period, 20 s", baseline, unit="s")
-    print(f"{'':<42}simulator is {baseline / fast:.0f} x faster (goal >= 8 x)")
+    _scipy_closed_loop(road, params, span)
+    casadi_rhs = time.perf_counter() - start
+    _report(f"  CasADi plant rhs + LSODA, {span:g} s", casadi_rhs, unit="s")
+    print(f"{'':<42}simulator is {(casadi_rhs / span) / (fast / 20.0):.0f} x faster per second")
+
+    seat_names = ("f_Sx", "f_Sy", "thetadd_1")
+    seat = [OUTPUT_NAMES.index(name) for name in seat_names]
+    reference = reference_simulation(road, params, duration_s=20.0)["y"][:, seat]
+    print(
+        f"{'':<42}same model: seat (f_Sx, f_Sy, θ̈1) ‖s − s_ref‖rms / ‖s_ref − s_ref(0)‖rms "
+        f"against CVODES at rtol 1e-10 over each run's span:"
+    )
+    for label, run in runs.items():
+        rows = run["y"].shape[0]
+        print(f"{'':<42}  {label}: {_percent(seat_agreement(run['y'][:, seat], reference[:rows]))}")
+    fast_run = simulate(road, params, duration_s=20.0)
+    fast_seat = np.column_stack([fast_run[name] for name in seat_names])
+    print(f"{'':<42}  simulator, 20 s: {_percent(seat_agreement(fast_seat, reference))}")
 
 
-if __name__ == "__main__":
-    sys.exit(main())
+def _percent(values: np.ndarray) -> str:
+    return ", ".join(f"{100 * value:.3g} %" for value in values)
+
+
+def _bench_matrix() -> None:
+    from tests.bench_matrix import main as matrix
+
+    matrix()
 
 
 def _comfort_design() -> None:
-    """Issue 11: the two-load ride-comfort optimisation on the detailed plant (38 states per load),
-    certified BFGS (adjoint gradients) against Nelder-Mead on the same cost from the same start."""
+    """Issue 11: the two-load ride-comfort optimisation on the detailed plant (38 states per load):
+    IPOPT through CasADi and the certified BFGS (both adjoint gradients, whole ``optimise_gain``
+    calls incl. the phase-1 start) against Nelder-Mead on the same cost from the same start."""
     from scipy.optimize import minimize
 
     from loader_model.control.comfort_design import (
@@ -306,10 +371,7 @@ def _comfort_design() -> None:
     )
 
     plants = comfort_plants()
-    result = optimise_gain(plants)
-    seconds = _median_seconds(lambda: optimise_gain(plants), 3)
-    _report("comfort design, certified BFGS (2 loads)", seconds, unit="s")
-    print(f"  Σ a_total² {result['cost']:.6f} in {result['iterations']} iterations")
+    results = {solver: optimise_gain(plants, solver=solver) for solver in ("ipopt", "bfgs")}
 
     def cost(x: np.ndarray) -> float:
         rows = evaluate_gain(plants, x.reshape(1, 4))
@@ -317,11 +379,32 @@ def _comfort_design() -> None:
             return np.inf
         return sum(e.a_total**2 for e in rows)
 
-    start = result["start"].ravel()
+    start = results["bfgs"]["start"].ravel()
     began = time.perf_counter()
     nelder = minimize(cost, start, method="Nelder-Mead", options={"maxfev": 4000, "fatol": 1e-9})
     elapsed = time.perf_counter() - began
-    _report("  baseline: Nelder-Mead, same cost", elapsed, seconds, unit="s")
+    _report("baseline: Nelder-Mead, same cost (2 loads)", elapsed, unit="s")
     print(
         f"  Σ a_total² {nelder.fun:.6f} in {nelder.nfev} evaluations, gain {np.round(nelder.x, 3)}"
     )
+    labels = {
+        "ipopt": "comfort design, IPOPT (goal <= 2 s)",
+        "bfgs": "comfort design, certified BFGS",
+    }
+    for solver, result in results.items():
+        seconds = _median_seconds(lambda solver=solver: optimise_gain(plants, solver=solver), 5)
+        _report(labels[solver], seconds, elapsed, unit="s")
+        extra = (
+            f", {result['evaluations']} evaluations ({result['rejected']} outside the σ set), "
+            f"min margin over iterates {np.min(result['iterate_margins']):.4f} rad/s"
+            if solver == "ipopt"
+            else ""
+        )
+        print(
+            f"  Σ a_total² {result['cost']:.9f} in {result['iterations']} iterations, "
+            f"gain {np.round(result['gain'].ravel(), 3)}{extra}"
+        )
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -115,3 +115,32 @@ def test_report_on_a_file_is_a_value_error(tmp_path: Path) -> None:
 def test_reproduce_rejects_one_trial(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["reproduce", "--trials", "1"]) == 2
     assert "--trials" in capsys.readouterr().err
+
+
+def test_designed_controllers_add_rows_without_changing_the_paper_trials() -> None:
+    gains = {"skyhook-lqr": (1.0, 2.0, 3.0, 4.0), "skyhook-optimised": (5.0, -6.0, 7.0, 8.0)}
+    plain, extended = trial_specs(3, 2), trial_specs(3, 2, designed=gains)
+    assert [s for s in extended if s.k_fb is None] == plain
+    designed = [s for s in extended if s.k_fb is not None]
+    assert len(designed) == 2 * 2 * 2 * 2
+    assert {s.controller: s.k_fb for s in designed} == gains
+    assert len({s.course_seed for s in extended}) == len(extended)
+    with pytest.raises(ValueError, match="designed controllers"):
+        trial_specs(3, 2, designed={"skyhook-fancy": (1.0, 2.0, 3.0, 4.0)})
+
+
+def test_a_designed_controller_runs_the_skyhook_with_its_gains() -> None:
+    from loader_model.control.settings import SETTINGS_NAMES
+    from loader_model.experiments.trials import controller_arguments, plant_for
+
+    params = plant_for("skyhook-optimised", "empty")
+    arguments = controller_arguments("skyhook-optimised", "empty", params, (5.0, -6.0, 7.0, 8.0))
+    vector = arguments["settings"]
+    gains = [vector[SETTINGS_NAMES.index(n)] for n in ("k_x", "k_y", "k_theta", "k_phi")]
+    assert gains == [5.0, -6.0, 7.0, 8.0]
+    assert (
+        arguments["controller"].name()
+        == controller_arguments("skyhook", "empty", params)["controller"].name()
+    )
+    with pytest.raises(ValueError, match="needs its gains"):
+        controller_arguments("skyhook-lqr", "empty", params)

@@ -21,7 +21,17 @@ def test_reproduce_writes_a_complete_report(tmp_path: Path, capsys) -> None:
     assert sorted(links) == sorted(FIGURES)
     for name in links:
         assert (target / name).stat().st_size > 10_000
-    for name in ("table1", "table4", "table5", "table6", "eq43", "gains", "trials"):
+    for name in ("table1", "table4", "table5", "table6", "eq43", "gains", "designed", "trials"):
         assert (target / f"{name}.csv").is_file()
     assert len((target / "table6.csv").read_text().strip().splitlines()) == 13
+    gains = (target / "gains.csv").read_text().strip().splitlines()
+    assert [line.split(",")[0] for line in gains[1:]] == [
+        "skyhook",
+        "skyhook-lqr",
+        "skyhook-optimised",
+    ]
+    designed = (target / "designed.csv").read_text().strip().splitlines()
+    assert len(designed) == 5 and "Beyond the paper" in text
+    trials = (target / "trials.csv").read_text().strip().splitlines()
+    assert len(trials) == 1 + 2 * 2 * 6 * 2
     assert "within 10 percentage points" in capsys.readouterr().out

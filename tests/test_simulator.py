@@ -25,6 +25,7 @@ import casadi as ca
 import numpy as np
 import pytest
 
+from loader_model.experiments.trials import controller_arguments
 from loader_model.iso2631 import VibrationRecord, evaluate_record
 from loader_model.plant.equilibrium import static_state
 from loader_model.plant.plant import EXOGENOUS_NAMES, OUTPUT_NAMES, STATE_NAMES, plant_function
@@ -52,11 +53,14 @@ def _seat_evaluation(time_s: np.ndarray, seat: np.ndarray):
     return evaluate_record(record, k_factors=K_FACTORS)
 
 
-def _compare(load: str, passive: bool, duration_s: float | None) -> None:
+def _compare(
+    load: str, passive: bool, duration_s: float | None, controller: str | None = None
+) -> None:
     params = _parameters(load, passive)
     road = course_input(paper_course(9.0), params)
-    fast = simulate(road, params, duration_s=duration_s)
-    reference = reference_simulation(road, params, duration_s=duration_s, rtol=1e-10)
+    control = {} if controller is None else controller_arguments(controller, load, params)
+    fast = simulate(road, params, duration_s=duration_s, **control)
+    reference = reference_simulation(road, params, duration_s=duration_s, rtol=1e-10, **control)
     np.testing.assert_allclose(fast.time_s, reference["time"], rtol=0, atol=1e-12)
     reference_seat = reference["y"][:, [OUTPUT_NAMES.index(name) for name in SEAT]]
     fast_seat = np.column_stack([fast[name] for name in SEAT])
@@ -90,6 +94,24 @@ def test_full_bucket_matches_the_cvodes_reference_over_the_first_boards() -> Non
 def test_full_bucket_matches_the_cvodes_reference_on_the_paper_course() -> None:
     """Baseline controller, full bucket, whole course at 9 km/h."""
     _compare("full", passive=False, duration_s=None)
+
+
+@pytest.mark.parametrize("controller", ["virtual-accumulator", "skyhook"])
+def test_active_controllers_match_the_cvodes_reference_over_the_first_boards(
+    controller: str,
+) -> None:
+    """The 1 kHz virtual accumulator and skyhook (Table 3), empty bucket, first 6 s."""
+    _compare("empty", passive=False, duration_s=6.0, controller=controller)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("load", ["empty", "full"])
+@pytest.mark.parametrize("controller", ["virtual-accumulator", "skyhook"])
+def test_active_controllers_match_the_cvodes_reference_on_the_paper_course(
+    load: str, controller: str
+) -> None:
+    """The active controllers, whole course at 9 km/h, both loads."""
+    _compare(load, passive=False, duration_s=None, controller=controller)
 
 
 @pytest.mark.slow

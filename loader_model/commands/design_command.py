@@ -9,7 +9,8 @@ HELP = "design the skyhook gains K_fb (LQR or ISO 2631 optimisation); Fig. 12"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add ``--params``, ``--load``, ``--method``, ``--road``, ``--speed``, ``--margin``, ``--plot``."""
+    """Add ``--params``, ``--load``, ``--method``, ``--solver``, ``--road``, ``--speed``,
+    ``--margin``, ``--plot`` and ``--output``."""
     parser.add_argument("--params", metavar="FILE", default=None, help="loader parameter file")
     parser.add_argument(
         "--load",
@@ -17,13 +18,40 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         default="both",
         help="bucket load(s) the gains are designed for (default: both, robust gains)",
     )
-    parser.add_argument("--method", choices=("lqr", "optimise"), default="optimise")
+    parser.add_argument(
+        "--method",
+        choices=("lqr", "optimise", "refine"),
+        default="optimise",
+        help="lqr: output-feedback LQR (Eq. 41, 42); optimise: ISO 2631 a_total on the linear "
+        "plant (default); refine: optimise, then refine on the nonlinear paper course at --speed",
+    )
+    parser.add_argument(
+        "--solver",
+        choices=("bfgs", "ipopt"),
+        default="bfgs",
+        help="optimise/refine: bfgs: certified BFGS with adjoint gradients (default); ipopt: "
+        "IPOPT through CasADi on the same cost (every iterate stable, same optimum)",
+    )
+    parser.add_argument(
+        "--evaluations",
+        type=int,
+        default=120,
+        metavar="N",
+        help="refine: budget of course evaluations (120)",
+    )
     parser.add_argument("--road", default="C", metavar="CLASS", help="ISO 8608 class A-H (C)")
     parser.add_argument("--speed", type=float, default=9.0, metavar="KMH", help="km/h (9)")
     parser.add_argument(
         "--margin", type=float, default=0.1, metavar="RAD_S", help="stability margin σ (0.1)"
     )
     parser.add_argument("--plot", metavar="FILE.png", default=None, help="write Fig. 12 here")
+    parser.add_argument(
+        "--output",
+        metavar="FILE.toml",
+        default=None,
+        help="write a controller settings file with the designed gains "
+        "(for loader-model simulate --controller FILE.toml)",
+    )
 
 
 def _row(label: str, gain, evaluations) -> str:
@@ -38,6 +66,39 @@ def _row(label: str, gain, evaluations) -> str:
     return f"  {label:<22} [{gains}]  a_total {costs}  Σa² {total:.4f}"
 
 
+def _refine(args: argparse.Namespace, start, loads, params):
+    """Refine ``start`` on the nonlinear paper course and print the course a_total before/after."""
+    from loader_model.control.course_refinement import course_cost, refine_on_course
+
+    print(f"Refining on the nonlinear paper course at {args.speed:g} km/h ({', '.join(loads)}):")
+    table3 = course_cost((2.75, 5.10, -4.0, -0.22), loads, args.speed, params)
+    result = refine_on_course(
+        start,
+        loads=loads,
+        speed_kmh=args.speed,
+        margin=args.margin,
+        params=params,
+        max_evaluations=args.evaluations,
+    )
+    for name, totals in (
+        ("Table 3", table3),
+        ("optimised (linear)", result["start_a_total"]),
+        ("refined (course)", result["a_total"]),
+    ):
+        shown = "  ".join(f"{load}: {value:.4f}" for load, value in totals.items())
+        print(f"  {name:<22} course a_total [m/s²]  {shown}")
+    gains = " ".join(f"{g:8.3f}" for g in result["gain"].ravel())
+    print(
+        f"  refined gains [{gains}]  ({result['evaluations']} evaluations, "
+        f"{result['refused']} refused: unstable, failed or outside the settings' range)"
+    )
+    totals = "/".join(f"{value:.3f}" for value in result["a_total"].values())
+    note = (
+        f"; course a_total {totals} m/s² ({'/'.join(loads)}), {result['evaluations']} evaluations"
+    )
+    return result["gain"], note
+
+
 def run(args: argparse.Namespace) -> int:
     """Design, print gains / costs / poles / margins, write the figure atomically."""
     import numpy as np
@@ -46,10 +107,16 @@ def run(args: argparse.Namespace) -> int:
 
     if args.plot is not None:
         check_output_path(args.plot, (".png",), "plot file")  # before any work
+    if args.output is not None:
+        check_output_path(args.output, (".toml",), "--output")
     if not (np.isfinite(args.speed) and 0.36 <= args.speed <= 108):
         raise ValueError(f"--speed {args.speed!r}: allowed: 0.36 to 108 km/h")
     if not (np.isfinite(args.margin) and args.margin >= 0):
         raise ValueError(f"--margin {args.margin!r}: allowed: a number >= 0 (rad/s)")
+    if args.method == "refine" and args.speed not in (9.0, 18.0):
+        raise ValueError(f"--speed {args.speed:g} with --method refine: allowed: 9 or 18 km/h")
+    if args.evaluations < 1:
+        raise ValueError(f"--evaluations {args.evaluations}: allowed: an integer >= 1")
     from loader_model.control.comfort_design import (
         TABLE3_GAIN,
         comfort_plants,
@@ -59,6 +126,7 @@ def run(args: argparse.Namespace) -> int:
     )
     from loader_model.control.comfort_plant import comfort_case
 
+    course_note = ""
     loads = ("empty", "full") if args.load == "both" else (args.load,)
     params = None
     if args.params is not None:
@@ -70,10 +138,13 @@ def run(args: argparse.Namespace) -> int:
     table3 = TABLE3_GAIN
     flipped = TABLE3_GAIN * np.array([[1.0, 1.0, 1.0, -1.0]])
     lqr = {p.name: lqr_gain(p).gain for p in design}
-    if args.method == "optimise":
-        result = optimise_gain(design, margin=args.margin)
+    if args.method in ("optimise", "refine"):
+        result = optimise_gain(design, margin=args.margin, solver=args.solver)
         designed, label = result["gain"], "optimised (ISO 2631)"
-        note = f"{result['iterations']} iterations, {result['time_s']:.2f} s, {result['status']}"
+        note = (
+            f"{args.solver}: {result['iterations']} iterations, {result['time_s']:.2f} s, "
+            f"{result['status']}"
+        )
     else:
         designed = lqr[loads[0]] if len(loads) == 1 else None
         label, note = "output-feedback LQR", "Q = C_zᵀC_z, R = 1e-2, X0 = B_w B_wᵀ"
@@ -84,11 +155,14 @@ def run(args: argparse.Namespace) -> int:
     print("  a_total [m/s²] (Eq. 50, k = 1, 1, 0.4) on both loads:")
     rows = [("Table 3", table3), ("Table 3, k_φ = +0.22", flipped)]
     rows += [(f"LQR ({name})", gain) for name, gain in lqr.items()]
-    if designed is not None and args.method == "optimise":
+    if designed is not None and args.method in ("optimise", "refine"):
         rows.append((label, designed))
     for name, gain in rows:
         print(_row(name, gain, evaluate_gain(every, gain)))
     print(f"  {label}: {note}")
+    if args.method == "refine":
+        designed, course_note = _refine(args, designed, loads, params)
+        label = "refined on the course"
     final = designed if designed is not None else next(iter(lqr.values()))
     print(
         "Closed loop with the designed gains (margin over all poles incl. the fixed road and"
@@ -107,6 +181,25 @@ def run(args: argparse.Namespace) -> int:
             f"σ_Vp {e.v_p_rms * 1e6:.3f} cm³/rev, σ_pA {e.p_a_rms / 1e5:.2f} bar, "
             f"within limits: {e.within_limits}\n    {listed}"
         )
+    if args.output is not None:
+        import datetime
+
+        from loader_model.control.settings import default_settings, save_settings, with_gains
+
+        source = (
+            f"loader-model design --method {args.method}"
+            f"{'' if args.method == 'lqr' else f' --solver {args.solver}'} --load {args.load} --road "
+            f"{args.road.upper()} --speed {args.speed:g} --margin {args.margin:g}"
+            f"{'' if args.params is None else f' --params {args.params}'}"
+            f"{f' --evaluations {args.evaluations}' if args.method == 'refine' else ''} "
+            f"on {datetime.date.today().isoformat()}{course_note}"
+        )
+        save_settings(
+            with_gains(default_settings(), final, source),
+            args.output,
+            header="Controller settings with designed skyhook gains (loader-model design).",
+        )
+        print(f"wrote {args.output}")
     if args.plot is not None:
         from loader_model.control.comfort_figure import pitch_responses, plot_pitch_responses
 

@@ -66,7 +66,7 @@ def run(args: argparse.Namespace) -> int:
     print("=== Table 6: change of a_total against the baseline (model beside paper) ===")
     print(markdown_table(summary["tables"]["table6"]))
     print(
-        f"{summary['within']} of {len(summary['cells'])} cells within 10 percentage points; "
+        f"{summary['within']} of {len(summary['paper_cells'])} paper cells within 10 percentage points; "
         f"report in {summary['timings']['total']:.1f} s"
     )
     print(f"wrote {path / 'report.md'}")

@@ -33,7 +33,13 @@ CONTROLLERS = ("baseline", "passive", "virtual-accumulator", "skyhook")
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Register the arguments of ``loader-model simulate``."""
     add_model_arguments(parser)
-    parser.add_argument("--controller", choices=CONTROLLERS, default="baseline")
+    parser.add_argument(
+        "--controller",
+        default="baseline",
+        metavar="NAME|FILE.toml",
+        help=f"one of {', '.join(CONTROLLERS)}, or a controller settings file (the skyhook "
+        "with its settings, e.g. written by loader-model design --output); default baseline",
+    )
     parser.add_argument(
         "--speed", type=float, default=9.0, metavar="KMH", help="speed in km/h (default 9)"
     )
@@ -94,18 +100,31 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"--speed must be in (0, 40] km/h; got {args.speed!r}")
     if args.seed < 0:
         raise ValueError(f"--seed must be >= 0; got {args.seed}")
+    settings_file = None
+    if args.controller not in CONTROLLERS:
+        if not args.controller.endswith(".toml"):
+            raise ValueError(
+                f"--controller {args.controller!r}: allowed: {', '.join(CONTROLLERS)} or a "
+                "controller settings file FILE.toml"
+            )
+        from loader_model.control.settings import load_settings
+
+        settings_file = load_settings(args.controller)
     options = PlantOptions(accumulator=args.controller == "passive")
     params = plant_parameter_vector(args.params, args.load, options)
     course = _course(args.course, args.speed, args.duration, args.seed)
     control: dict = {}
-    if args.controller in ("virtual-accumulator", "skyhook"):
+    if args.controller in ("virtual-accumulator", "skyhook") or settings_file is not None:
         from loader_model.parameters import resolve_loader_and_load
         from loader_model.simulation.ride_control import controller_setup, plant_controller
 
+        law = "skyhook" if settings_file is not None else args.controller
         _, load = resolve_loader_and_load(args.params, args.load)
-        settings, state = controller_setup(args.controller, params, load.pressure_normalisation)
+        settings, state = controller_setup(
+            law, params, load.pressure_normalisation, settings=settings_file
+        )
         control = {
-            "controller": plant_controller(args.controller),
+            "controller": plant_controller(law),
             "settings": settings,
             "controller_state": state,
         }

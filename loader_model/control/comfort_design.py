@@ -10,7 +10,9 @@ seat outputs and an ISO 8608 road (:mod:`~loader_model.control.road_filter`). Th
 the mean square of the weighted seat accelerations under the road (Eq. 49, 50), subject to every
 closed-loop pole left of −σ and the r.m.s. limits 3 σ_Vp ≤ V_p,max and 3 σ_pA ≤ ‖p_A‖∞ (the
 pressure norm of the load: 100 / 200 bar) for each load. Minimised by
-:func:`~loader_model.control.feasible_descent.minimise_certified` (every iterate certified).
+:func:`~loader_model.control.feasible_descent.minimise_certified` (every iterate certified) or,
+with ``solver="ipopt"``, by IPOPT through CasADi on the same barrier cost
+(:mod:`~loader_model.control.comfort_ipopt`).
 Compared with Table 3 and with the output-feedback LQR (Eq. 41, 42) on the same plant, with
 Q = C_zᵀ C_z (the weighted seat outputs), R = ``lqr_effort`` and X0 = B_w B_wᵀ.
 """
@@ -150,16 +152,21 @@ def optimise_gain(
     *,
     margin: float = DEFAULT_MARGIN,
     max_iterations: int = 200,
+    solver: str = "bfgs",
 ) -> dict[str, Any]:
     """Minimise Σ a_total² over ``plants`` with margin σ and the r.m.s. limits.
 
     ``gain0`` (default Table 3) is first moved to margin 1.5 σ + 0.01 by the phase 1 of
     :func:`~loader_model.control.h2_design.design_h2_gain` if it misses it, then the r.m.s.
-    limits are checked (ValueError if the start violates them). Returns the dict of
-    :func:`~loader_model.control.feasible_descent.minimise_certified` plus ``start``.
+    limits are checked (ValueError if the start violates them). ``solver``: ``"bfgs"``
+    (:func:`~loader_model.control.feasible_descent.minimise_certified`, the default) or
+    ``"ipopt"`` (:func:`~loader_model.control.comfort_ipopt.minimise_ipopt`, IPOPT through
+    CasADi on the same Φ). Returns that function's dict plus ``start`` and ``solver``.
     """
     from loader_model.control.h2_design import _reach_margin
 
+    if solver not in ("bfgs", "ipopt"):
+        raise ValueError(f"solver {solver!r}: allowed: 'bfgs' or 'ipopt'")
     start = TABLE3_GAIN if gain0 is None else np.atleast_2d(np.asarray(gain0, dtype=float))
     mask = np.ones(start.shape, dtype=bool)
     start, failure = _reach_margin(plants, start, mask, 1.5 * margin + 0.01)
@@ -167,7 +174,13 @@ def optimise_gain(
         raise ValueError(
             f"no start gain meets the margin {margin} rad/s: {failure['return_status']}"
         )
-    result = minimise_certified(
+    if solver == "ipopt":
+        from loader_model.control.comfort_ipopt import minimise_ipopt
+
+        minimise = minimise_ipopt
+    else:
+        minimise = minimise_certified
+    result = minimise(
         plants,
         start,
         mask=mask,
@@ -175,4 +188,4 @@ def optimise_gain(
         margin=margin,
         max_iterations=max_iterations,
     )
-    return {**result, "start": start}
+    return {**result, "start": start, "solver": solver}

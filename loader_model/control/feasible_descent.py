@@ -24,6 +24,7 @@ trial gain is accepted only if (1) every closed loop has all poles left of −σ
 eigenvalues), (2) every r.m.s. value is inside its limit, (3) Φ decreases (Armijo). So every
 iterate, and the result, meets the margin and the limits; the start must meet them too (phase 1
 of :func:`~loader_model.control.h2_design.design_h2_gain` moves it there). A local optimum.
+:mod:`~loader_model.control.comfort_ipopt` minimises the same Φ with IPOPT through CasADi.
 """
 
 from __future__ import annotations
@@ -38,7 +39,7 @@ from scipy.linalg import solve_continuous_lyapunov
 from loader_model.control.design_plant import DesignPlant
 from loader_model.control.h2_cost import closed_loop
 
-__all__ = ["balanced_plant", "cost_and_gradient", "minimise_certified"]
+__all__ = ["BarrierObjective", "balanced_plant", "cost_and_gradient", "minimise_certified"]
 
 
 def balanced_plant(plant: DesignPlant) -> DesignPlant:
@@ -106,6 +107,37 @@ def _margin(plants: Sequence[DesignPlant], gain: np.ndarray) -> float:
     return min(-float(np.max(np.linalg.eigvals(closed_loop(p, gain)[0]).real)) for p in plants)
 
 
+class BarrierObjective:
+    """Φ of the module docstring and its exact gradient in all gain entries; None outside the set.
+
+    ``scale`` (J(K₀), set by the caller from a first evaluation; 1 until then) normalises J.
+    Calling it returns (Φ, ∂Φ/∂K flattened row-major, J), or None when a closed loop has a pole
+    at or right of −``margin`` or an r.m.s. value reaches its limit.
+    """
+
+    def __init__(
+        self, plants: Sequence[DesignPlant], effort: np.ndarray, margin: float, mu: float
+    ) -> None:
+        self.plants, self.effort, self.margin, self.mu = tuple(plants), effort, margin, mu
+        self.limits = np.concatenate([np.asarray(p.e_rms_limits, dtype=float) for p in plants])
+        self.scale = 1.0
+
+    def __call__(self, gain: np.ndarray) -> tuple[float, np.ndarray, float] | None:
+        if _margin(self.plants, gain) <= self.margin:
+            return None
+        j, dj, var, dvar = cost_and_gradient(self.plants, gain, self.effort)
+        limits = self.limits
+        ratio = var / limits**2 if limits.size else np.zeros(0)
+        if np.any(ratio >= 1.0):
+            return None
+        phi = float(j) / self.scale - self.mu * float(np.sum(np.log1p(-ratio)))
+        grad = dj.ravel() / self.scale
+        if limits.size:
+            weights = self.mu / (limits**2 * (1.0 - ratio))
+            grad = grad + np.tensordot(weights, dvar, axes=1).ravel()
+        return phi, grad, float(j)
+
+
 def minimise_certified(
     plants: Sequence[DesignPlant],
     gain0: np.ndarray,
@@ -123,28 +155,17 @@ def minimise_certified(
     ``converged`` (projected gradient norm ≤ ``gtol`` relative), ``status``, ``time_s``.
     """
     started = time.perf_counter()
-    limits = np.concatenate([np.asarray(p.e_rms_limits, dtype=float) for p in plants])
     free = mask.ravel()
+    objective = BarrierObjective(plants, effort, margin, mu)
 
     def evaluate(gain: np.ndarray) -> tuple[float, np.ndarray, float] | None:
-        if _margin(plants, gain) <= margin:
-            return None
-        j, dj, var, dvar = cost_and_gradient(plants, gain, effort)
-        ratio = var / limits**2 if limits.size else np.zeros(0)
-        if np.any(ratio >= 1.0):
-            return None
-        phi = float(j) / scale - mu * float(np.sum(np.log1p(-ratio)))
-        grad = dj.ravel() / scale
-        if limits.size:
-            weights = mu / (limits**2 * (1.0 - ratio))
-            grad = grad + np.tensordot(weights, dvar, axes=1).ravel()
-        return phi, grad[free], float(j)
+        value = objective(gain)
+        return None if value is None else (value[0], value[1][free], value[2])
 
-    scale = 1.0
     first = evaluate(gain0)
     if first is None:
         raise ValueError("the start gain misses the stability margin or an r.m.s. limit")
-    scale = first[2]
+    objective.scale = first[2]
     phi, grad, j = evaluate(gain0)  # type: ignore[misc]
     gain, hessian_inv = gain0.copy(), np.eye(int(free.sum()))
     history, status, converged = [j], "max_iterations", False

@@ -27,7 +27,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["SENSOR_NAMES", "SensorModel", "pitch_acceleration", "sensor_signals"]
+__all__ = ["SENSOR_NAMES", "SensorModel", "pitch_acceleration", "quantise", "sensor_signals"]
 
 #: Order of the controller's ``y_sensor`` input; each is a plant output of the same name.
 SENSOR_NAMES: tuple[str, ...] = ("f_Hx", "f_Hy", "f_Ny", "phi", "p_A")
@@ -36,6 +36,19 @@ SENSOR_NAMES: tuple[str, ...] = ("f_Hx", "f_Hy", "f_Ny", "phi", "p_A")
 def pitch_acceleration(f_hy: Any, f_ny: Any, accelerometer_x: Any) -> Any:
     """θ̈1 estimated from the vertical readings at H and N (section 3.3); numpy or CasADi."""
     return (f_ny - f_hy) / accelerometer_x
+
+
+def quantise(value: Any, step: Any) -> Any:
+    """``value`` rounded to the nearest multiple of ``step`` (halves up); unchanged where
+    ``step`` is 0. NumPy arrays or CasADi expressions (the compiled loop uses the same law)."""
+    import casadi as ca
+
+    if isinstance(value, ca.SX | ca.MX) or isinstance(step, ca.SX | ca.MX):
+        safe = ca.if_else(step > 0, step, 1.0)
+        return ca.if_else(step > 0, safe * ca.floor(value / safe + 0.5), value)
+    step = np.asarray(step, dtype=float)
+    safe = np.where(step > 0, step, 1.0)
+    return np.where(step > 0, safe * np.floor(np.asarray(value) / safe + 0.5), value)
 
 
 def sensor_signals(y: np.ndarray) -> np.ndarray:
@@ -82,12 +95,16 @@ class SensorModel:
             if name != "offset" and np.any(value < 0):
                 raise ValueError(f"{name} = {value!r}; allowed: numbers >= 0")
 
-    def measure(self, readings: np.ndarray) -> np.ndarray:
-        """Corrupt ideal ``readings`` (samples × 5, or one sample of 5) with offset, noise, rounding."""
-        readings = np.asarray(readings, dtype=float)
+    def errors(self, count: int) -> np.ndarray:
+        """Offset plus white noise of ``count`` samples (count × 5), from :attr:`seed`."""
         rng = np.random.default_rng(self.seed)
-        noisy = readings + np.asarray(self.offset)
-        noisy = noisy + rng.standard_normal(readings.shape) * np.asarray(self.noise_std)
-        step = np.asarray(self.quantisation)
-        safe = np.where(step > 0, step, 1.0)
-        return np.where(step > 0, np.round(noisy / safe) * safe, noisy)
+        noise = rng.standard_normal((int(count), len(SENSOR_NAMES)))
+        return np.asarray(self.offset) + noise * np.asarray(self.noise_std)
+
+    def measure(self, readings: np.ndarray) -> np.ndarray:
+        """Corrupt ideal ``readings`` (samples × 5, or one sample of 5) with offset, noise and
+        rounding (:func:`quantise`); the simulator applies the same errors in its 1 kHz loop."""
+        readings = np.asarray(readings, dtype=float)
+        rows = readings.reshape(-1, len(SENSOR_NAMES))
+        noisy = rows + self.errors(rows.shape[0])
+        return quantise(noisy, np.asarray(self.quantisation)).reshape(readings.shape)

@@ -29,15 +29,17 @@ import numpy as np
 from loader_model.files import read_text
 from loader_model.parameter_checks import check_ranges
 from loader_model.parameter_fields import Range, Sourced, si, sources_field
-from loader_model.parameter_toml import build
+from loader_model.parameter_toml import build, dumps, to_raw
 
 __all__ = [
     "SETTINGS_NAMES",
     "ControllerSettings",
     "default_settings",
     "load_settings",
+    "save_settings",
     "settings_vector",
     "settings_vector_for_plant",
+    "with_gains",
 ]
 
 #: Order of the ``settings`` input of every controller Function.
@@ -147,6 +149,31 @@ def _parse(text: str, origin: str) -> ControllerSettings:
 def load_settings(path: str | Path) -> ControllerSettings:
     """Read and validate a controller settings file; errors name the file, field and range."""
     return _parse(read_text(path, "controller settings file"), str(path))
+
+
+def with_gains(settings: ControllerSettings, k_fb: object, source: str) -> ControllerSettings:
+    """A validated copy of ``settings`` with skyhook gains ``k_fb`` (4 numbers) from ``source``."""
+    raw = to_raw(settings)
+    raw["k_fb"] = {
+        **raw["k_fb"],
+        "value": [float(k) for k in np.asarray(k_fb, dtype=float).ravel()],
+        "source": source,
+    }
+    return _parse(dumps(raw), "designed gains")
+
+
+def save_settings(settings: ControllerSettings, path: str | Path, header: str = "") -> None:
+    """Write ``settings`` as a controller TOML file (atomically; :func:`load_settings` reads it
+    back equal)."""
+    from loader_model.export import write_atomically
+
+    text = dumps(to_raw(settings), header)
+    write_atomically(
+        path,
+        lambda temporary: temporary.write_text(text, encoding="utf-8", newline="\n"),
+        (".toml",),
+        "controller settings file",
+    )
 
 
 @functools.cache

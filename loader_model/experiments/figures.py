@@ -17,7 +17,7 @@ import numpy as np
 
 from loader_model.experiments.statistics import mean_interval
 from loader_model.experiments.table6 import LOAD_LABELS, SPEED_LABELS
-from loader_model.experiments.trials import CONTROLLERS, TrialOutcome
+from loader_model.experiments.trials import CONTROLLERS, DESIGNED_CONTROLLERS, TrialOutcome
 
 __all__ = ["plot_fig10", "plot_fig13", "plot_fig14", "single_obstacle_run"]
 
@@ -103,8 +103,10 @@ def plot_fig14(path: Path, outcomes: Sequence[TrialOutcome]) -> Path:
     plt = _pyplot()
     conditions = sorted({(o.spec.speed_kmh, o.spec.load) for o in outcomes})
     figure, axis = plt.subplots(figsize=(8.0, 4.2))
-    width = 0.8 / len(CONTROLLERS)
-    for k, controller in enumerate(CONTROLLERS):
+    present = {o.spec.controller for o in outcomes}
+    controllers = [c for c in (*CONTROLLERS, *DESIGNED_CONTROLLERS) if c in present]
+    width = 0.8 / len(controllers)
+    for k, controller in enumerate(controllers):
         means, errors = [], []
         for speed, load in conditions:
             sample = [
@@ -118,7 +120,7 @@ def plot_fig14(path: Path, outcomes: Sequence[TrialOutcome]) -> Path:
                 mean, _, high = (sample[0],) * 3 if sample else (np.nan,) * 3
             means.append(mean)
             errors.append(high - mean)
-        positions = np.arange(len(conditions)) + (k - 1.5) * width
+        positions = np.arange(len(conditions)) + (k - (len(controllers) - 1) / 2) * width
         axis.bar(positions, means, width, yerr=errors, capsize=3, label=controller)
     axis.set_xticks(
         np.arange(len(conditions)),

@@ -18,7 +18,14 @@ from pathlib import Path
 from loader_model.experiments.table6 import LOAD_LABELS, SPEED_LABELS, Table6Cell
 from loader_model.experiments.tables import Rows
 
-__all__ = ["FIDELITY_POINTS", "ReportOptions", "table6_rows", "write_report", "write_tables"]
+__all__ = [
+    "FIDELITY_POINTS",
+    "ReportOptions",
+    "designed_rows",
+    "table6_rows",
+    "write_report",
+    "write_tables",
+]
 
 #: Table 6 fidelity criterion of issue 13: |model − paper| within this many percentage points.
 FIDELITY_POINTS = 10.0
@@ -64,6 +71,29 @@ def table6_rows(cells: list[Table6Cell]) -> Rows:
                 f"{c.within:.1f}",
             ]
         )
+    return rows
+
+
+def designed_rows(cells: list[Table6Cell]) -> Rows:
+    """Per condition: the skyhook's change of a_total with Table 3, LQR, optimised and
+    course-refined gains."""
+    names = ("skyhook", "skyhook-lqr", "skyhook-optimised", "skyhook-refined")
+    rows: Rows = [["speed", "load", *(f"{n} Δ [%] [95 % CI]" for n in names), "best"]]
+    conditions = sorted({(c.speed_kmh, c.load) for c in cells})
+    for speed, load in conditions:
+        found = {c.controller: c for c in cells if (c.speed_kmh, c.load) == (speed, load)}
+        row = [f"{speed:g} km/h", load]
+        for name in names:
+            cell = found.get(name)
+            row.append(
+                "-"
+                if cell is None
+                else f"{cell.model.change_percent:+.1f} "
+                f"[{cell.model.low_percent:+.1f}, {cell.model.high_percent:+.1f}]"
+            )
+        present = [n for n in names if n in found]
+        row.append(min(present, key=lambda n: found[n].model.change_percent) if present else "-")
+        rows.append(row)
     return rows
 
 

@@ -4,8 +4,8 @@
 - Eq. 43: poles, zeros and DC gain of the detailed pressure loop beside the reduced-order one.
 - Tables 4 and 5: friction and leakage identified from a synthetic lift-test record (seed 0)
   of the hydraulic plant, whose true values are Tables 4 and 5 themselves.
-- Gains: Table 3 (the shipped skyhook settings); the comfort-optimised gain is a placeholder
-  when :mod:`loader_model.control.comfort_design` is not available.
+- Gains: Table 3, output-feedback LQR and comfort-optimised
+  (:mod:`~loader_model.experiments.designed_gains`), with their linear-model a_total.
 """
 
 from __future__ import annotations
@@ -140,22 +140,32 @@ def identification_rows(seed: int = 0) -> tuple[Rows, Rows]:
     return table4, table5
 
 
-def gain_rows() -> Rows:
-    """Skyhook gains on normalised (ẋ_H, ẏ_H, θ̇1, φ): Table 3 and the comfort design."""
-    from loader_model.control.settings import default_settings
-
-    rows: Rows = [["gain set", "k_ẋ", "k_ẏ", "k_θ̇", "k_φ", "source"]]
-    rows.append(["Table 3 (used)", *(f"{k:g}" for k in default_settings().k_fb), "paper"])
-    rows.append(
-        ["output-feedback LQR", "-", "-", "-", "-", "not computed (Q, R of the paper unknown)"]
-    )
-    comfort: Any = None
-    try:
-        import importlib
-
-        comfort = importlib.import_module("loader_model.control.comfort_design")
-    except ImportError:
-        comfort = None
-    note = "module present; not wired into the report yet" if comfort else "not available yet"
-    rows.append(["comfort design (CasADi)", "-", "-", "-", "-", note])
+def gain_rows(gains: dict[str, Any]) -> Rows:
+    """Skyhook gains on normalised (ẋ_H, ẏ_H, θ̇1, φ): Table 3, output-feedback LQR and the
+    comfort optimisation (:func:`~loader_model.experiments.designed_gains.designed_gains`), with
+    their linear-model a_total and stability margin per load."""
+    rows: Rows = [
+        [
+            "gain set",
+            "k_ẋ",
+            "k_ẏ",
+            "k_θ̇",
+            "k_φ",
+            "a_total empty [m/s²]",
+            "a_total full [m/s²]",
+            "margin empty / full [rad/s]",
+            "source",
+        ]
+    ]
+    for name, gain in gains.items():
+        totals = [gain.a_total_m_s2[load] for load in ("empty", "full")]
+        rows.append(
+            [
+                name,
+                *(f"{k:.4g}" for k in gain.k_fb),
+                *("unstable" if not np.isfinite(t) else f"{t:.3f}" for t in totals),
+                " / ".join(f"{gain.margin_rad_s[load]:+.3f}" for load in ("empty", "full")),
+                gain.source,
+            ]
+        )
     return rows

@@ -10,9 +10,10 @@ What varies between simulated trials (each drawn from its own seed, module :func
 - the board positions: each board shifted by a normal of standard deviation
   :data:`POSITION_JITTER_M` (boards laid by hand).
 
-Sensor noise (:class:`~loader_model.control.sensors.SensorModel`) is not applied: the controller
-reads the plant's outputs inside the compiled 1 kHz period, which has no noise input; wiring one
-in means changing the simulator's compiled period, left for later.
+- the sensors' noise: white noise of :data:`TRIAL_SENSOR_NOISE` on the controller's five
+  readings (:class:`~loader_model.control.sensors.SensorModel`, applied inside the compiled 1 kHz
+  loop), a fresh draw per trial. The paper names no sensor types or noise levels; the values
+  are assumptions stated beside the constant.
 
 Every (speed, load, controller, trial) draws independently (the real trials were separate
 drives), from ``numpy.random.SeedSequence([seed, speed index, load index, controller index,
@@ -29,11 +30,13 @@ import numpy as np
 
 __all__ = [
     "CONTROLLERS",
+    "DESIGNED_CONTROLLERS",
     "LOADS",
     "POSITION_JITTER_M",
     "SPEEDS_KMH",
     "SPEED_LIMIT_FRACTION",
     "SPEED_STD_FRACTION",
+    "TRIAL_SENSOR_NOISE",
     "TrialOutcome",
     "TrialSpec",
     "run_trial",
@@ -46,12 +49,19 @@ SPEEDS_KMH: tuple[float, ...] = (9.0, 18.0)
 LOADS: tuple[str, ...] = ("empty", "full")
 #: The four control conditions of section 5.3, baseline first.
 CONTROLLERS: tuple[str, ...] = ("baseline", "passive", "virtual-accumulator", "skyhook")
+#: The skyhook with designed gains (:mod:`~loader_model.experiments.designed_gains`), run as two
+#: more rows of the matrix; their trials carry the gains in :attr:`TrialSpec.k_fb`.
+DESIGNED_CONTROLLERS: tuple[str, ...] = ("skyhook-lqr", "skyhook-optimised", "skyhook-refined")
 #: Standard deviation of the driven speed as a fraction of the nominal speed (assumed).
 SPEED_STD_FRACTION = 0.02
 #: Largest deviation of the driven speed from the nominal speed, as a fraction (assumed).
 SPEED_LIMIT_FRACTION = 0.05
 #: Standard deviation of each board's position in m (assumed: boards laid by hand).
 POSITION_JITTER_M = 0.05
+#: Per-sample noise of the sensors f_Hx, f_Hy, f_Ny [m/s^2], phi [rad], p_A [Pa] at 1 kHz
+#: (assumed, the paper gives none): a MEMS accelerometer of 150 ug/sqrt(Hz) over 500 Hz is
+#: 0.033 m/s^2; a boom-angle encoder of 0.05 deg; a pressure transmitter of 0.1 % of 400 bar.
+TRIAL_SENSOR_NOISE: tuple[float, ...] = (0.033, 0.033, 0.033, 8.7e-4, 4.0e4)
 
 
 @dataclass(frozen=True)
@@ -74,6 +84,8 @@ class TrialSpec:
         Seed of the board-position jitter.
     duration_s : float or None
         Simulated time (None: the whole course).
+    k_fb : tuple of 4 float or None
+        Skyhook gains of a designed controller (None: the settings file's, Table 3).
     """
 
     speed_kmh: float
@@ -83,6 +95,7 @@ class TrialSpec:
     speed_factor: float
     course_seed: int
     duration_s: float | None = None
+    k_fb: tuple[float, ...] | None = None
 
 
 @dataclass(frozen=True)
@@ -103,6 +116,7 @@ def trial_specs(
     loads: tuple[str, ...] = LOADS,
     controllers: tuple[str, ...] = CONTROLLERS,
     duration_s: float | None = None,
+    designed: dict[str, tuple[float, ...]] | None = None,
 ) -> list[TrialSpec]:
     """All trials of the experiment, each drawn from its own seed (module notes).
 
@@ -116,6 +130,8 @@ def trial_specs(
         The factors (default: the paper's).
     duration_s : float, optional
         Simulated time of each trial (default: the whole course).
+    designed : dict, optional
+        :data:`DESIGNED_CONTROLLERS` name -> skyhook gains, run after ``controllers``.
 
     Returns
     -------
@@ -126,11 +142,17 @@ def trial_specs(
         raise ValueError(f"seed must be an integer >= 0; got {seed!r}")
     if isinstance(trials, bool) or not isinstance(trials, int | np.integer) or trials < 1:
         raise ValueError(f"trials must be an integer >= 1; got {trials!r}")
+    designed = dict(designed or {})
+    unknown = sorted(set(designed) - set(DESIGNED_CONTROLLERS))
+    if unknown:
+        raise ValueError(f"designed controllers {unknown}; allowed: {list(DESIGNED_CONTROLLERS)}")
+    every = (*CONTROLLERS, *DESIGNED_CONTROLLERS)
     specs = []
     for i, speed in enumerate(speeds_kmh):
         for j, load in enumerate(loads):
-            for k, controller in enumerate(controllers):
-                index = CONTROLLERS.index(controller) if controller in CONTROLLERS else k
+            for k, controller in enumerate((*controllers, *designed)):
+                index = every.index(controller) if controller in every else k
+                gains = designed.get(controller)
                 for trial in range(int(trials)):
                     sequence = np.random.SeedSequence([int(seed), i, j, index, trial])
                     rng = np.random.default_rng(sequence)
@@ -143,7 +165,9 @@ def trial_specs(
                     )
                     course_seed = int(rng.integers(0, 2**31 - 1))
                     specs.append(
-                        TrialSpec(speed, load, controller, trial, factor, course_seed, duration_s)
+                        TrialSpec(
+                            speed, load, controller, trial, factor, course_seed, duration_s, gains
+                        )
                     )
     return specs
 
@@ -161,20 +185,32 @@ def _plant(load: str, accumulator: bool) -> np.ndarray:
     return _PLANTS[key]
 
 
-def controller_arguments(controller: str, load: str, params: np.ndarray) -> dict[str, Any]:
+def controller_arguments(
+    controller: str, load: str, params: np.ndarray, k_fb: tuple[float, ...] | None = None
+) -> dict[str, Any]:
     """Keyword arguments of :func:`~loader_model.simulation.simulator.simulate` for ``controller``
-    (baseline and passive: the pump holds its static command)."""
+    (baseline and passive: the pump holds its static command; the designed controllers: the
+    skyhook with gains ``k_fb``)."""
+    from loader_model.control.settings import default_settings, with_gains
     from loader_model.parameters import bucket_load
     from loader_model.simulation.ride_control import controller_setup, plant_controller
 
-    if controller not in CONTROLLERS:
-        raise ValueError(f"controller {controller!r} is unknown; allowed: {list(CONTROLLERS)}")
+    if controller not in (*CONTROLLERS, *DESIGNED_CONTROLLERS):
+        allowed = [*CONTROLLERS, *DESIGNED_CONTROLLERS]
+        raise ValueError(f"controller {controller!r} is unknown; allowed: {allowed}")
     if controller in ("baseline", "passive"):
         return {}
-    settings, state = controller_setup(controller, params, bucket_load(load).pressure_normalisation)
+    law, settings = controller, None
+    if controller in DESIGNED_CONTROLLERS:
+        if k_fb is None:
+            raise ValueError(f"controller {controller!r} needs its gains k_fb")
+        law, settings = "skyhook", with_gains(default_settings(), k_fb, controller)
+    vector, state = controller_setup(
+        law, params, bucket_load(load).pressure_normalisation, settings=settings
+    )
     return {
-        "controller": plant_controller(controller),
-        "settings": settings,
+        "controller": plant_controller(law),
+        "settings": vector,
         "controller_state": state,
     }
 
@@ -186,6 +222,7 @@ def plant_for(controller: str, load: str) -> np.ndarray:
 
 def run_trial(spec: TrialSpec) -> TrialOutcome:
     """Simulate one trial over the paper's course and evaluate the seat (section 5.3)."""
+    from loader_model.control.sensors import SensorModel
     from loader_model.simulation.courses import paper_course
     from loader_model.simulation.simulator import course_input, simulate
 
@@ -197,8 +234,9 @@ def run_trial(spec: TrialSpec) -> TrialOutcome:
     result = simulate(
         course_input(course, params),
         params,
+        sensors=SensorModel(noise_std=TRIAL_SENSOR_NOISE, seed=spec.course_seed),
         duration_s=spec.duration_s,
-        **controller_arguments(spec.controller, spec.load, params),
+        **controller_arguments(spec.controller, spec.load, params, spec.k_fb),
     )
     evaluation = result.seat_evaluation()
     return TrialOutcome(

@@ -29,10 +29,16 @@ import casadi as ca
 
 __all__ = [
     "ATMOSPHERIC_PRESSURE_PA",
+    "END_STOP_BAND_M",
+    "accumulator_gas_energy",
     "accumulator_gas_pressure",
     "chamber_pressure_rate",
     "chamber_volumes",
+    "compression_energy",
+    "end_stop_energy",
     "end_stop_force",
+    "end_stop_spring_force",
+    "flow_power_pressure",
     "leakage_flow",
     "orifice_flow",
     "pump_displacement_acceleration",
@@ -43,6 +49,8 @@ __all__ = [
 
 #: Atmospheric pressure [Pa]: absolute = gauge + this (gas law, cavitation check).
 ATMOSPHERIC_PRESSURE_PA = 101_325.0
+#: Penetration [m] over which the end stops' spring grows in quadratically (C¹ contact).
+END_STOP_BAND_M = 5e-4
 
 Expr = Any
 
@@ -56,6 +64,12 @@ def saturate(x: Expr, limit: Expr, width: Expr) -> Expr:
     """C¹ saturation to ±``limit``: exact for |x| ≤ limit − width, ±limit beyond limit + width."""
     knee = limit - width
     return x - ramp(x - knee, 2 * width) + ramp(-x - knee, 2 * width)
+
+
+def _ramp_integral(x: Expr, width: Expr) -> Expr:
+    """∫₀ˣ ramp_w: 0, x³/(6w), then w²/6 + (x² − w²)/2 − w (x − w)/2 (C², potential of ramp)."""
+    linear = width**2 / 6 + (x * x - width**2) / 2 - width * (x - width) / 2
+    return ca.if_else(x <= 0, 0, ca.if_else(x >= width, linear, x**3 / (6 * width)))
 
 
 def chamber_volumes(
@@ -78,6 +92,31 @@ def chamber_volumes(
 def chamber_pressure_rate(bulk_modulus_pa: Expr, volume_m3: Expr, net_inflow_m3_s: Expr) -> Expr:
     r"""Pressure build-up of a chamber (Eq. 36, 37): :math:`\dot p = K_{oil} Q_{net} / V`."""
     return bulk_modulus_pa / volume_m3 * net_inflow_m3_s
+
+
+def flow_power_pressure(bulk_modulus_pa: Expr, pressure_pa: Expr) -> Expr:
+    r"""Pressure π(p) whose product with a chamber's volume flow is the power that flow carries.
+
+    .. math:: \pi(p) = K_{oil} \left(e^{p / K_{oil}} - 1\right) = p + p^2 / (2 K_{oil}) + \dots
+
+    The chamber law of Eq. 36, 37 (:func:`chamber_pressure_rate`, constant K_oil) is the mass
+    balance of a fluid of density ρ = ρ0 e^(p/K_oil) with volume flows Q at the chamber's density.
+    A mass flow ρ Q carries the free enthalpy g(p) = ∫₀ᵖ dp'/ρ = (K/ρ0)(1 − e^(−p/K)) per kg, so
+    the power is ρ g Q = π(p) Q: the familiar p Q to first order in p / K_oil.
+    """
+    return bulk_modulus_pa * ca.expm1(pressure_pa / bulk_modulus_pa)
+
+
+def compression_energy(bulk_modulus_pa: Expr, volume_m3: Expr, pressure_pa: Expr) -> Expr:
+    r"""Energy stored by compressing the oil of a chamber of ``volume_m3`` to ``pressure_pa``.
+
+    .. math:: \Psi(p, V) = V \left(\pi(p) - p\right) = V \frac{p^2}{2 K_{oil}} + \dots
+
+    It is a state function with :math:`\dot\Psi = \pi(p) Q - p \dot V` along Eq. 36, 37
+    (Q: the volume inflow, −p V̇ the work done on the piston), which p²V/(2K) is not when V
+    varies: ∂Ψ/∂p = V (e^(p/K) − 1) and ∂Ψ/∂V = π − p make the ṗ = K (Q − V̇)/V terms cancel.
+    """
+    return volume_m3 * (flow_power_pressure(bulk_modulus_pa, pressure_pa) - pressure_pa)
 
 
 def leakage_flow(k_lp: Expr, k_lv: Expr, p_a: Expr, p_b: Expr, velocity_m_s: Expr) -> Expr:
@@ -117,6 +156,19 @@ def seal_friction(
     return coulomb * ca.tanh(gamma * velocity_m_s) + f_v * velocity_m_s
 
 
+def _penetrations(piston_position_m: Expr, stroke_m: Expr) -> tuple[Expr, Expr]:
+    """C¹ penetrations ramp(δ) of the retracted and the extended end stop (positive inside)."""
+    below = ramp(-piston_position_m, END_STOP_BAND_M)
+    return below, ramp(piston_position_m - stroke_m, END_STOP_BAND_M)
+
+
+def end_stop_spring_force(piston_position_m: Expr, stroke_m: Expr, stiffness: Expr) -> Expr:
+    """Elastic part of :func:`end_stop_force` (positive: extending), −d/dx of
+    :func:`end_stop_energy`."""
+    below, above = _penetrations(piston_position_m, stroke_m)
+    return stiffness * (below - above)
+
+
 def end_stop_force(
     piston_position_m: Expr, velocity_m_s: Expr, stroke_m: Expr, stiffness: Expr, damping: Expr
 ) -> Expr:
@@ -127,14 +179,25 @@ def end_stop_force(
 
     .. math:: F = k\,\mathrm{ramp}(\delta) + c\,\dot\delta\,\mathrm{ramp}(\delta)/\delta_0
     """
-    band = 5e-4
-    below = ramp(-piston_position_m, band)
-    above = ramp(piston_position_m - stroke_m, band)
+    band = END_STOP_BAND_M
+    below, above = _penetrations(piston_position_m, stroke_m)
     fade_below = ca.fmin(below / band, 1)
     fade_above = ca.fmin(above / band, 1)
     retract_stop = stiffness * below - damping * velocity_m_s * fade_below
     extend_stop = stiffness * above + damping * velocity_m_s * fade_above
     return ca.fmax(retract_stop, 0) - ca.fmax(extend_stop, 0)
+
+
+def end_stop_energy(piston_position_m: Expr, stroke_m: Expr, stiffness: Expr) -> Expr:
+    """Elastic energy of the end stops of :func:`end_stop_force`: k ∫ ramp(δ) dδ over each end.
+
+    Its rate plus the power the stop delivers to the piston is minus the damping loss (≤ 0:
+    the stop's clamp at zero force only takes energy out).
+    """
+    band = END_STOP_BAND_M
+    below = _ramp_integral(-piston_position_m, band)
+    above = _ramp_integral(piston_position_m - stroke_m, band)
+    return stiffness * (below + above)
 
 
 def orifice_flow(
@@ -176,6 +239,32 @@ def accumulator_gas_pressure(
     slope = exponent * absolute / gas_volume_m3
     empty = absolute + slope * oil_volume_m3
     return ca.if_else(oil_volume_m3 >= 0, full, empty) - ATMOSPHERIC_PRESSURE_PA
+
+
+def accumulator_gas_energy(
+    precharge_pa: Expr, gas_volume_m3: Expr, exponent: Expr, oil_volume_m3: Expr
+) -> Expr:
+    r"""Energy stored in the accumulator: ∫ p dV_oil from empty (:func:`accumulator_gas_pressure`).
+
+    .. math::
+
+        E = \frac{(p_0 + p_{atm}) V_0}{n - 1}\left[\left(\frac{V_0}{V_0 - V_{oil}}\right)^{n-1}
+            - 1\right] - p_{atm} V_{oil}
+
+    (the polytropic gas's work, gauge like every pressure here; at n = 1 its limit, with
+    V_0 ln(V_0/(V_0 − V_oil))), continued for V_oil < 0 by the integral of the linear law there,
+    so that dE/dV_oil is the gauge pressure everywhere.
+    """
+    absolute = precharge_pa + ATMOSPHERIC_PRESSURE_PA
+    log_ratio = ca.log(gas_volume_m3 / (gas_volume_m3 - ca.fmax(oil_volume_m3, 0)))
+    excess = exponent - 1  # (r^m − 1)/m, and its limit ln r at the isothermal m = 0
+    safe = ca.if_else(excess == 0, 1, excess)
+    growth = ca.if_else(excess == 0, log_ratio, ca.expm1(excess * log_ratio) / safe)
+    full = absolute * gas_volume_m3 * growth
+    slope = exponent * absolute / gas_volume_m3
+    empty = absolute * oil_volume_m3 + slope * oil_volume_m3**2 / 2
+    gas = ca.if_else(oil_volume_m3 >= 0, full, empty)
+    return gas - ATMOSPHERIC_PRESSURE_PA * oil_volume_m3
 
 
 def pump_displacement_acceleration(

@@ -48,6 +48,8 @@ __all__ = [
     "OUTPUT_NAMES",
     "STATE_NAMES",
     "build_plant",
+    "hydraulic_drive",
+    "named_parameters",
     "plant_function",
 ]
 
@@ -89,12 +91,20 @@ _N_MECH = len(generated.PARAMETER_NAMES)
 _SATURATION_BAND = 0.01  # C¹ saturations are exact below 99 % of their limit
 
 
-def _named(params: Any) -> dict[str, Any]:
+def named_parameters(params: Any) -> dict[str, Any]:
+    """The entries of a plant parameter vector by name (:data:`PLANT_PARAMETER_NAMES`)."""
     return {name: params[i] for i, name in enumerate(PLANT_PARAMETER_NAMES)}
 
 
-def _drive(x: Any, u: Any, theta: dict[str, Any], completed: Any) -> dict[str, Any]:
-    """Hydraulic quantities of the state (totals over the cylinders)."""
+def hydraulic_drive(x: Any, u: Any, theta: dict[str, Any], completed: Any) -> dict[str, Any]:
+    """Hydraulic quantities of the state, totals over the cylinders (module docstring).
+
+    Returns the cylinder force and position, the pressure rates and every flow and force they
+    are made of (so that :mod:`loader_model.plant.energy` books the same terms): ``velocity``
+    ẋ_cyl, chamber volumes ``V_A``, ``V_B``, flows ``pump_flow``, ``charge``, ``check``,
+    ``relief``, ``leakage``, ``q_acc`` (into the orifice, at chamber A's density),
+    ``accumulator_rate`` (its oil volume rate), forces ``friction`` and ``end_stop``.
+    """
     p, pd = x[0:4], x[4:8]
     p_a, p_b, v_p, vd_p, v_acc = x[10], x[11], x[12], x[13], x[14]
     kinematics = generated.function("cylinder_kinematics")(p, pd, completed)
@@ -152,7 +162,18 @@ def _drive(x: Any, u: Any, theta: dict[str, Any], completed: Any) -> dict[str, A
     return {
         "force": force,
         "position": position,
+        "velocity": velocity,
+        "V_A": n * v_a,
+        "V_B": n * v_b,
         "pump_flow": pump_flow,
+        "charge": charge,
+        "check": check,
+        "relief": relief,
+        "leakage": leakage,
+        "q_acc": q_acc,
+        "accumulator_rate": accumulator_rate,
+        "friction": friction,
+        "end_stop": end_stop,
         "p_acc": p_acc,
         "rates": ca.vertcat(dp_a, dp_b, rate, dvd_p, accumulator_rate),
     }
@@ -170,9 +191,9 @@ def build_plant(symbol: type = ca.SX) -> ca.Function:
     u = symbol.sym("u", len(INPUT_NAMES))
     w = symbol.sym("w", len(EXOGENOUS_NAMES))
     params = symbol.sym("params", len(PLANT_PARAMETER_NAMES))
-    theta = _named(params)
+    theta = named_parameters(params)
     completed, _ = generated.function("complete_parameters")(params[:_N_MECH])
-    drive = _drive(x, u, theta, completed)
+    drive = hydraulic_drive(x, u, theta, completed)
     p, pd, anchor = x[0:4], x[4:8], x[8:10]
     road, road_rate, disturbance = w[0:4], w[4:8], w[8:11]
     pdd, anchor_rate = generated.function("forward_dynamics")(

@@ -43,6 +43,7 @@ def reference_simulation(
     controller: ca.Function | None = None,
     *,
     settings: Sequence[float] = (),
+    controller_state: Sequence[float] | None = None,
     duration_s: float | None = None,
     period_s: float = CONTROLLER_PERIOD_S,
     rtol: float = 1e-10,
@@ -51,7 +52,8 @@ def reference_simulation(
     """Reference run (module notes); returns ``time``, ``x`` (N, 15), ``y`` (N, 19), ``u`` (N,).
 
     Rows at the controller's instants t_k = k h, k = 0 .. N − 1, as in
-    :func:`~loader_model.simulation.simulator.simulate`.
+    :func:`~loader_model.simulation.simulator.simulate`, whose arguments ``controller``,
+    ``settings`` and ``controller_state`` (z_0, default zeros) these are.
 
     Raises
     ------
@@ -62,7 +64,11 @@ def reference_simulation(
     x, u_previous = static_state(params)
     controller = check_controller(_hold(u_previous) if controller is None else controller)
     plant = plant_function()
-    z = np.zeros(controller.size1_in(0))
+    z = (
+        np.zeros(controller.size1_in(0))
+        if controller_state is None
+        else np.asarray(controller_state, dtype=float).ravel()
+    )
     settings_vector = np.asarray(settings, dtype=float).ravel()
     total_s = road.duration_s if duration_s is None else float(duration_s)
     count = int(np.floor(total_s / period_s + 1e-9))

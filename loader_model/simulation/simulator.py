@@ -13,12 +13,14 @@ Events (cavitation, tyre lift-off, end stops, pump saturation) are recorded in t
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from collections.abc import Sequence
 
 import casadi as ca
 import numpy as np
 
+from loader_model.control.sensors import SENSOR_NAMES, SensorModel, quantise
 from loader_model.plant.equilibrium import static_state
 from loader_model.plant.plant import EXOGENOUS_NAMES, OUTPUT_NAMES, STATE_NAMES, plant_function
 from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
@@ -112,6 +114,7 @@ def simulate(
     settings: Sequence[float] = (),
     controller_state: Sequence[float] | None = None,
     disturbance: np.ndarray | None = None,
+    sensors: SensorModel | None = None,
     duration_s: float | None = None,
     period_s: float = CONTROLLER_PERIOD_S,
     substeps: int = 1,
@@ -135,6 +138,10 @@ def simulate(
         Its initial state z_0 (default zeros).
     disturbance : numpy.ndarray, optional
         (N, 3) forces F_dx, F_dy [N] and moment M_d [N*m] at the controller's instants.
+    sensors : SensorModel, optional
+        Offset, noise (seeded) and quantisation of the controller's sensors
+        (:class:`~loader_model.control.sensors.SensorModel`), applied in the compiled loop;
+        their readings appear in the result as ``<signal>_measured``. Default: exact sensors.
     duration_s : float, optional
         Simulated time (default: the road table's); N = floor(duration / h) periods.
     period_s : float
@@ -181,6 +188,7 @@ def simulate(
     exogenous = exogenous_table(
         road, time_s, None if disturbance is None else _extend(disturbance, count)
     )
+    y_errors, y_steps = _sensor_errors(sensors, count)
     period, backend = compile_period(controller, period_s, substeps, jit)
     chunk = min(int(chunk_periods), count)
     roll = _rolled(period, chunk)
@@ -188,10 +196,11 @@ def simulate(
     # Arrays in CasADi's column-major layout: a (chunk, n) C-order array is an (n, chunk) matrix.
     carry = np.concatenate([x0, z0, [u0]])
     w0, w1 = np.empty((chunk, len(EXOGENOUS_NAMES))), np.empty((chunk, len(EXOGENOUS_NAMES)))
+    e_block = np.zeros((chunk, len(OUTPUT_NAMES)))
     block = np.empty((chunk, ncarry))
     y_block, u_block = np.empty((chunk, len(OUTPUT_NAMES))), np.empty(chunk)
     buffer, trigger = roll.buffer()
-    for index, array in enumerate((carry, w0, w1, params, settings_vector)):
+    for index, array in enumerate((carry, w0, w1, params, settings_vector, e_block, y_steps)):
         buffer.set_arg(index, memoryview(array))
     for index, array in enumerate((block, y_block, u_block)):
         buffer.set_res(index, memoryview(array))
@@ -204,6 +213,7 @@ def simulate(
         rows = np.arange(start, start + chunk).clip(max=count - 1)
         w0[:] = exogenous[rows]
         w1[:] = exogenous[rows + 1]
+        e_block[:] = y_errors[rows]
         trigger()
         size = stop - start
         _finite_or_raise(block[:size].T, y_block[:size].T, start, period_s)
@@ -221,6 +231,11 @@ def simulate(
         if name not in _STATE_OUTPUTS:
             columns_out[name] = values
     columns_out["V_p_ref"] = u_all
+    if sensors is not None:
+        for name in SENSOR_NAMES:
+            column = OUTPUT_NAMES.index(name)
+            reading = quantise(y_all[column] + y_errors[:count, column], y_steps[column])
+            columns_out[f"{name}_measured"] = reading
     for index in range(nz):
         columns_out[f"z_{index}"] = states[len(STATE_NAMES) + index]
     for name, values in zip(EXOGENOUS_NAMES, exogenous[:count].T, strict=True):
@@ -239,6 +254,7 @@ def simulate(
         "scheme": "ROS2",
         "period_s": period_s,
         "substeps": int(substeps),
+        "sensors": None if sensors is None else dataclasses.asdict(sensors),
         "wall_time_s": wall_s,
         "real_time_factor": count * period_s / wall_s,
     }
@@ -251,8 +267,8 @@ _ROLLED: dict[tuple[int, int], ca.Function] = {}
 
 
 def _rolled(period: ca.Function, chunk: int) -> ca.Function:
-    """``period.mapaccum`` over ``chunk`` periods with params and settings given once (MX wrapper
-    that repeats them), built once per period Function and chunk size."""
+    """``period.mapaccum`` over ``chunk`` periods with params, settings and the sensors' steps
+    given once (MX wrapper that repeats them), built once per period Function and chunk size."""
     key = (id(period), chunk)
     if key not in _ROLLED:
         mapped = period.mapaccum("roll_mapped", chunk)
@@ -261,15 +277,40 @@ def _rolled(period: ca.Function, chunk: int) -> ca.Function:
         w1 = ca.MX.sym("w1", period.size1_in(2), chunk)
         params = ca.MX.sym("params", period.size1_in(3))
         settings = ca.MX.sym("settings", period.size1_in(4))
-        outputs = mapped(carry, w0, w1, ca.repmat(params, 1, chunk), ca.repmat(settings, 1, chunk))
+        y_error = ca.MX.sym("y_error", period.size1_in(5), chunk)
+        y_step = ca.MX.sym("y_step", period.size1_in(6))
+        outputs = mapped(
+            carry,
+            w0,
+            w1,
+            ca.repmat(params, 1, chunk),
+            ca.repmat(settings, 1, chunk),
+            y_error,
+            ca.repmat(y_step, 1, chunk),
+        )
         _ROLLED[key] = ca.Function(
             "roll",
-            [carry, w0, w1, params, settings],
+            [carry, w0, w1, params, settings, y_error, y_step],
             outputs,
-            ["carry", "w0", "w1", "params", "settings"],
+            ["carry", "w0", "w1", "params", "settings", "y_error", "y_step"],
             ["carry_next", "y", "u"],
         )
     return _ROLLED[key]
+
+
+def _sensor_errors(sensors: SensorModel | None, count: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per-period additive errors (count + 1, outputs) and converter steps (outputs) of the
+    controller's sensors; zero outside :data:`~loader_model.control.sensors.SENSOR_NAMES`."""
+    errors = np.zeros((count + 1, len(OUTPUT_NAMES)))
+    steps = np.zeros(len(OUTPUT_NAMES))
+    if sensors is None:
+        return errors, steps
+    if not isinstance(sensors, SensorModel):
+        raise TypeError(f"sensors must be a SensorModel or None; got {type(sensors).__name__}")
+    columns = [OUTPUT_NAMES.index(name) for name in SENSOR_NAMES]
+    errors[:, columns] = sensors.errors(count + 1)
+    steps[columns] = sensors.quantisation
+    return errors, steps
 
 
 def _extend(disturbance: np.ndarray, count: int) -> np.ndarray:

@@ -17,34 +17,25 @@ to the identity in the mechanical rows; a symbolic QR divides by columns that ar
 at rest and gave NaN). The road input enters as the table samples at the period's ends and is
 interpolated linearly inside it (:mod:`~loader_model.simulation.travel`).
 
-One period (:func:`period_function`): y_k = h(x_k, w_k), (z_{k+1}, u_k) = controller(z_k, y_k),
+One period (:func:`period_function`): y_k = h(x_k, w_k), (z_{k+1}, u_k) = controller(z_k, ỹ_k)
+with ỹ_k the sensors' reading of y_k (offset, noise, quantisation),
 then ``substeps`` ROS2 steps over the period with u_k held. The carry (x, z, u) rolls over many
-periods with ``mapaccum``; the period is JIT-compiled to C (``"compiler": "shell"``) where a C
-compiler works, else evaluated by CasADi's SX virtual machine.
+periods with ``mapaccum``; the period is compiled to C once per machine where a C compiler works
+(:mod:`~loader_model.simulation.compiled`), else evaluated by CasADi's SX virtual machine.
 """
 
 from __future__ import annotations
 
 import math
-import os
-import shutil
-import tempfile
 from collections.abc import Callable
-from multiprocessing import util
 
 import casadi as ca
 
+from loader_model.control.sensors import quantise
 from loader_model.plant.plant import EXOGENOUS_NAMES, OUTPUT_NAMES, STATE_NAMES, plant_function
+from loader_model.simulation.compiled import CompilationError, compiled_function
 
-__all__ = ["JIT_OPTIONS", "compile_period", "lu_solver", "period_function"]
-
-#: Options of the JIT-compiled period (``-O1``: compiles in about 0.5 s, runs as fast as -O3).
-JIT_OPTIONS: dict[str, object] = {
-    "jit": True,
-    "compiler": "shell",
-    "jit_options": {"flags": ["-O1"], "verbose": False, "cleanup": False},
-    "jit_cleanup": False,  # the per-process folder is removed as a whole at exit
-}
+__all__ = ["compile_period", "lu_solver", "period_function"]
 
 _GAMMA = 1.0 + 1.0 / math.sqrt(2.0)
 
@@ -102,10 +93,12 @@ def period_function(
     Returns
     -------
     casadi.Function
-        ``period(carry, w0, w1, params, settings) -> (carry_next, y, u)`` with
+        ``period(carry, w0, w1, params, settings, y_error, y_step) -> (carry_next, y, u)`` with
         carry = (x, z, u_previous), w0, w1 the exogenous input (road, road rate, disturbance;
         :data:`~loader_model.plant.plant.EXOGENOUS_NAMES`) at the period's start and end, y the
-        plant's outputs at its start and u the command held over it.
+        plant's outputs at its start and u the command held over it. The controller reads
+        ``quantise(y + y_error, y_step)`` (:func:`~loader_model.control.sensors.quantise`):
+        the sensors' offset and noise of this period and their converter steps (0: exact).
     """
     plant = plant_function()
     nx, nz = len(STATE_NAMES), controller.size1_in(0)
@@ -115,8 +108,10 @@ def period_function(
     w1 = ca.SX.sym("w1", len(EXOGENOUS_NAMES))
     params = ca.SX.sym("params", plant.size1_in(3))
     settings = ca.SX.sym("settings", controller.size1_in(2))
+    y_error = ca.SX.sym("y_error", len(OUTPUT_NAMES))
+    y_step = ca.SX.sym("y_step", len(OUTPUT_NAMES))
     _, y = plant(x, u_previous, w0, params)  # y does not depend on u (checked in the tests)
-    z_next, u = controller(z, y, settings)
+    z_next, u = controller(z, quantise(y + y_error, y_step), settings)
     step = period_s / substeps
     xs, us, ws = ca.SX.sym("x", nx), ca.SX.sym("u"), ca.SX.sym("w", len(EXOGENOUS_NAMES))
     rate_s = plant(xs, us, ws, params)[0]
@@ -137,42 +132,27 @@ def period_function(
     y_out = outputs[nx + nz + 1 : nx + nz + 1 + len(OUTPUT_NAMES)]
     return ca.Function(
         "closed_loop_period",
-        [carry, w0, w1, params, settings],
+        [carry, w0, w1, params, settings, y_error, y_step],
         [carry_next, y_out, outputs[-1]],
-        ["carry", "w0", "w1", "params", "settings"],
+        ["carry", "w0", "w1", "params", "settings", "y_error", "y_step"],
         ["carry_next", "y", "u"],
     )
 
 
 _COMPILED: dict[tuple[str, float, int, bool], tuple[ca.Function, str]] = {}
-_JIT_DIRECTORIES: dict[int, str] = {}
-
-
-def _jit_directory() -> str:
-    """A temporary folder of this process for the JIT's C, object and library files.
-
-    CasADi writes them into the working directory and deletes them only when the Function is
-    destroyed, which a process that exits (or a pool worker, which ends by ``os._exit``) may
-    never do: the files piled up where ``loader-model`` was run. The folder is removed at exit
-    by a multiprocessing finaliser, which runs in pool workers too and only in its own process.
-    """
-    pid = os.getpid()
-    if pid not in _JIT_DIRECTORIES:
-        folder = tempfile.mkdtemp(prefix="loader-model-jit-")
-        util.Finalize(None, shutil.rmtree, args=(folder, True), exitpriority=0)
-        _JIT_DIRECTORIES[pid] = folder
-    return _JIT_DIRECTORIES[pid] + os.sep
 
 
 def compile_period(
     controller: ca.Function, period_s: float = 1e-3, substeps: int = 1, jit: bool = True
 ) -> tuple[ca.Function, str]:
-    """The period Function, JIT-compiled if ``jit`` and a C compiler works; cached per process.
+    """The period Function, compiled to C if ``jit`` and a C compiler works; cached per process
+    and, compiled, per machine (:mod:`~loader_model.simulation.compiled`).
 
     Returns
     -------
     (casadi.Function, str)
-        The Function and its backend, ``"jit"`` or ``"sx"`` (the fallback when compiling fails).
+        The Function and its backend, ``"jit"`` (compiled C) or ``"sx"`` (the fallback when
+        compiling fails).
     """
     key = (controller.serialize(), float(period_s), int(substeps), bool(jit))
     if key not in _COMPILED:
@@ -180,22 +160,8 @@ def compile_period(
         compiled, backend = period, "sx"
         if jit:
             try:
-                compiled = ca.Function(
-                    "closed_loop_period_jit",
-                    [*period.sx_in()],
-                    period.call(period.sx_in()),
-                    period.name_in(),
-                    period.name_out(),
-                    {
-                        **JIT_OPTIONS,
-                        "jit_options": {
-                            **JIT_OPTIONS["jit_options"],  # type: ignore[dict-item]
-                            "directory": _jit_directory(),
-                        },
-                    },
-                )
-                backend = "jit"
-            except RuntimeError:  # no working C compiler: interpret the SX graph
+                compiled, backend = compiled_function(period), "jit"
+            except CompilationError:  # no working C compiler: interpret the SX graph
                 compiled, backend = period, "sx"
         _COMPILED[key] = (compiled, backend)
     return _COMPILED[key]

@@ -1,0 +1,175 @@
+r"""Power flows of the plant: stored energy, inputs and losses as one CasADi Function.
+
+Built from the same pieces as the plant (:func:`~loader_model.plant.plant.hydraulic_drive`, the
+generated ``mechanical_energy``, the components of :mod:`~loader_model.plant.components`), so the
+balance
+
+.. math:: \frac{dE}{dt} = \frac{\partial E}{\partial x} f(x, u, w)
+          + \frac{\partial E}{\partial w_{road}} \dot w_{road,true}
+          = P_{road} + P_{pump} + P_{charge} + P_{dist} - \sum D
+
+holds at every state, to round-off (``tests/test_plant_energy.py``). Stored energy E:
+
+- kinetic ½ ṗᵀ M ṗ (Eq. 25), gravity, tyre springs with the contact law's clamp (Eq. 1-4,
+  derive/energy.py), end stops (:func:`~loader_model.plant.components.end_stop_energy`);
+- oil compression Ψ = V (π(p) − p) in chambers A and B (Eq. 36, 37 with their density law,
+  :func:`~loader_model.plant.components.compression_energy`);
+- accumulator gas, polytropic (:func:`~loader_model.plant.components.accumulator_gas_energy`).
+
+A volume flow Q leaving or entering a chamber at pressure p carries π(p) Q, π(p) = K(e^(p/K) − 1),
+so (all flows totals over the cylinders):
+
+- pump (Fig. 9): P_pump = Q_p (π(p_A) − π(p_B)); charge line: P_charge = π(p_c)(Q_charge + Q_check);
+- road: F_tyre · ẇ + F_elastic · (ẇ_true − ẇ) (derive/energy.py; ẇ_x = 0 by design while w_x
+  moves, :mod:`~loader_model.simulation.travel`); disturbance (Eq. 5-7): F_dx ẋ_H + F_dy ẏ_H + M_d θ̇1;
+- losses: tyres (dampers, sliding), seal friction F_f ẋ (Eq. 46, errata 10), end stops' damping,
+  leakage Q_L (π_A − π_B) (Eq. 47, 48), orifice π_A q_acc − p_acc V̇_acc, low-side and check valves
+  (π_c − π) Q, relief π_A Q_relief (to the tank at 0 gauge).
+
+Two losses are not sign-definite, because the plant's laws are not: leakage's k_Lv ẋ term (Eq. 48)
+moves oil against the pressure without a force on the piston, and the orifice feeds an
+accumulator whose oil is incompressible at ρ0 while the chamber's is not, so for
+0 < p_A − p_acc ≲ p_A² / (2 K) the flow runs "downhill" in pressure but "uphill" in π.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+from typing import Any
+
+import casadi as ca
+
+import loader_model_generated as generated
+from loader_model.plant import components as hyd
+from loader_model.plant.plant import (
+    EXOGENOUS_NAMES,
+    INPUT_NAMES,
+    STATE_NAMES,
+    hydraulic_drive,
+    named_parameters,
+    plant_function,
+)
+from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
+
+__all__ = [
+    "ENERGY_NAMES",
+    "INPUT_POWER_NAMES",
+    "LOSS_NAMES",
+    "build_energy",
+    "energy_function",
+    "energy_rate_function",
+]
+
+#: Stored energies [J], in the order of the output ``E_parts``.
+ENERGY_NAMES = ("kinetic", "gravity", "tyres", "end_stops", "oil_A", "oil_B", "gas")
+#: Input powers [W], output ``P_in``.
+INPUT_POWER_NAMES = ("road", "pump", "charge_line", "disturbance")
+#: Dissipated powers [W], output ``P_loss``.
+LOSS_NAMES = (
+    "tyres",
+    "seal_friction",
+    "end_stops",
+    "leakage",
+    "orifice",
+    "low_side_valve",
+    "check_valve",
+    "relief_valve",
+)
+_N_MECH = len(generated.PARAMETER_NAMES)
+
+
+def _hydraulics(x: Any, drive: dict[str, Any], theta: dict[str, Any]) -> tuple[list, list, list]:
+    """Stored energies, input powers (pump, charge line) and losses of the hydraulic drive."""
+    p_a, p_b, v_acc = x[10], x[11], x[14]
+    k_oil, n = theta["K_oil"], theta["n_cyl"]
+    pi_a, pi_b = hyd.flow_power_pressure(k_oil, p_a), hyd.flow_power_pressure(k_oil, p_b)
+    pi_c = hyd.flow_power_pressure(k_oil, theta["p_charge"])
+    position, velocity = drive["position"], drive["velocity"]
+    stop_energy = n * hyd.end_stop_energy(position, theta["stroke"], theta["k_end"])
+    stop_spring = n * hyd.end_stop_spring_force(position, theta["stroke"], theta["k_end"])
+    stored = [
+        stop_energy,
+        hyd.compression_energy(k_oil, drive["V_A"], p_a),
+        hyd.compression_energy(k_oil, drive["V_B"], p_b),
+        hyd.accumulator_gas_energy(
+            theta["p_0"], theta["n_acc"] * theta["V_0"], theta["n_poly"], v_acc
+        ),
+    ]
+    charge, check = drive["charge"], drive["check"]
+    inputs = [drive["pump_flow"] * (pi_a - pi_b), pi_c * (charge + check)]
+    losses = [
+        drive["friction"] * velocity,
+        (stop_spring - drive["end_stop"]) * velocity,
+        drive["leakage"] * (pi_a - pi_b),
+        pi_a * drive["q_acc"] - drive["p_acc"] * drive["accumulator_rate"],
+        (pi_c - pi_b) * charge,
+        (pi_c - pi_a) * check,
+        pi_a * drive["relief"],
+    ]
+    return stored, inputs, losses
+
+
+def build_energy(symbol: type = ca.SX) -> ca.Function:
+    """``plant_energy(x, u, w, road_velocity, params) -> (E, E_parts, P_in, P_loss, F_elastic)``.
+
+    ``road_velocity`` is the time derivative of the road displacement w[0:4] (what the road
+    really does); w[4:8] is the rate the tyre law's dampers see. ``F_elastic`` (4,): the tyres'
+    elastic forces, whose product with ``road_velocity`` is the part of P_road that depends on it.
+    """
+    x = symbol.sym("x", len(STATE_NAMES))
+    u = symbol.sym("u", len(INPUT_NAMES))
+    w = symbol.sym("w", len(EXOGENOUS_NAMES))
+    road_velocity = symbol.sym("road_velocity", 4)
+    params = symbol.sym("params", len(PLANT_PARAMETER_NAMES))
+    theta = named_parameters(params)
+    completed, _ = generated.function("complete_parameters")(params[:_N_MECH])
+    drive = hydraulic_drive(x, u, theta, completed)
+    p, pd, anchor = x[0:4], x[4:8], x[8:10]
+    road, road_rate, disturbance = w[0:4], w[4:8], w[8:11]
+    kinetic, gravity, tyres, elastic, tyre_loss = generated.function("mechanical_energy")(
+        p, pd, anchor, road, road_rate, completed
+    )
+    forces = generated.function("tyre_contact")(p, pd, anchor, road, road_rate, completed)[0]
+    road_power = ca.dot(forces, road_rate) + ca.dot(elastic, road_velocity - road_rate)
+    stored, hydraulic_in, hydraulic_loss = _hydraulics(x, drive, theta)
+    parts = ca.vertcat(kinetic, gravity, tyres, *stored)
+    inputs = ca.vertcat(road_power, *hydraulic_in, ca.dot(disturbance, pd[0:3]))
+    losses = ca.vertcat(tyre_loss, *hydraulic_loss)
+    return ca.Function(
+        "plant_energy",
+        [x, u, w, road_velocity, params],
+        [ca.sum1(parts), parts, inputs, losses, elastic],
+        ["x", "u", "w", "road_velocity", "params"],
+        ["E", "E_parts", "P_in", "P_loss", "F_elastic"],
+    )
+
+
+@cache
+def energy_function() -> ca.Function:
+    """The SX :func:`build_energy` Function, built once per process."""
+    return build_energy(ca.SX)
+
+
+@cache
+def energy_rate_function() -> ca.Function:
+    """``energy_rate(x, u, w, road_velocity, params) -> (dE_dt, P_net)``: both sides of the balance.
+
+    dE/dt = ∂E/∂x · f(x, u, w) + ∂E/∂w_road · road_velocity by forward AD through the plant's
+    ``xdot``; P_net = ΣP_in − ΣP_loss. Equal to round-off at any state (module docstring).
+    """
+    x = ca.SX.sym("x", len(STATE_NAMES))
+    u = ca.SX.sym("u", len(INPUT_NAMES))
+    w = ca.SX.sym("w", len(EXOGENOUS_NAMES))
+    road_velocity = ca.SX.sym("road_velocity", 4)
+    params = ca.SX.sym("params", len(PLANT_PARAMETER_NAMES))
+    energy, _, inputs, losses, _ = energy_function()(x, u, w, road_velocity, params)
+    xdot = plant_function()(x, u, w, params)[0]
+    direction = ca.vertcat(xdot, road_velocity)
+    rate = ca.jtimes(energy, ca.vertcat(x, w[0:4]), direction)
+    return ca.Function(
+        "energy_rate",
+        [x, u, w, road_velocity, params],
+        [rate, ca.sum1(inputs) - ca.sum1(losses)],
+        ["x", "u", "w", "road_velocity", "params"],
+        ["dE_dt", "P_net"],
+    )
