@@ -150,13 +150,33 @@ def test_command_runs_the_study_and_writes_table_gains_and_report(tmp_path: Path
     assert '"hydraulics.bulk_modulus"' in header and '"a_w_pitch"' in header
 
 
-def test_sample_runs_equal_the_table6_trials_and_sensor_errors_act() -> None:
-    """A sample with nothing varied reproduces :func:`run_trial` of the Table 6 experiment bit for
-    bit (the baseline's command as a setting and the sensor-error wrapper change nothing), and a
-    sensor offset changes only the controllers that read it."""
+def _trial_without_noise(controller: str, duration_s: float) -> float:
+    """a_total of the Table 6 trial path (trials.plant_for, controller_arguments) on the course of
+    course seed 0 at 9 km/h, full load, with exact sensors."""
     import dataclasses
 
-    from loader_model.experiments.trials import TrialSpec, run_trial
+    from loader_model.experiments.trials import POSITION_JITTER_M, controller_arguments, plant_for
+    from loader_model.simulation.courses import paper_course
+    from loader_model.simulation.simulator import course_input, simulate
+
+    params = plant_for(controller, "full")
+    course = paper_course(9.0, position_jitter_m=POSITION_JITTER_M, seed=0)
+    course = dataclasses.replace(course, speed_m_s=course.speed_m_s * 1.0)
+    result = simulate(
+        course_input(course, params),
+        params,
+        duration_s=duration_s,
+        **controller_arguments(controller, "full", params),
+    )
+    return float(result.seat_evaluation().total_m_s2)
+
+
+def test_sample_runs_equal_the_table6_trials_and_sensor_errors_act() -> None:
+    """A sample with nothing varied reproduces the Table 6 trial path with exact sensors bit for
+    bit (the baseline's command as a setting and the sensor-error wrapper change nothing); a
+    sensor offset or noise changes only the controllers that read the sensors, reproducibly."""
+    import dataclasses
+
     from loader_model.robustness.gains import resolve_gains
     from loader_model.robustness.runner import run_sample
     from loader_model.robustness.sampling import SampleSpec
@@ -165,11 +185,13 @@ def test_sample_runs_equal_the_table6_trials_and_sensor_errors_act() -> None:
     text = text.replace('compare = ["skyhook"]', 'compare = ["virtual-accumulator", "skyhook"]')
     study = parse_study(text.replace("speeds_kmh = [18.0]", "speeds_kmh = [9.0]"))
     spec = SampleSpec(0, 9.0, 1.0, "full", (), 0)
-    rows = run_sample(study, resolve_gains(study), spec)
+    gains = resolve_gains(study)
+    rows = run_sample(study, gains, spec)
     for row in rows:
-        trial = run_trial(TrialSpec(9.0, "full", row["controller"], 0, 1.0, 0, 4.0))
-        assert row["a_total"] == trial.a_total_m_s2, row["controller"]
-    biased = dataclasses.replace(spec, values=(("sensors.f_Hy.offset", 0.5),))
-    changed = run_sample(study, resolve_gains(study), biased)
-    assert changed[0]["a_total"] == rows[0]["a_total"]  # the baseline reads no sensor
-    assert changed[2]["a_total"] != rows[2]["a_total"]  # the skyhook integrates the bias
+        assert row["a_total"] == _trial_without_noise(row["controller"], 4.0), row["controller"]
+    for error in (("sensors.f_Hy.offset", 0.5), ("sensors.f_Hy.noise_std", 0.05)):
+        changed = run_sample(study, gains, dataclasses.replace(spec, values=(error,)))
+        assert changed[0]["a_total"] == rows[0]["a_total"]  # the baseline reads no sensor
+        assert changed[2]["a_total"] != rows[2]["a_total"], error
+        again = run_sample(study, gains, dataclasses.replace(spec, values=(error,)))
+        assert again == changed

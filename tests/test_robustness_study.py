@@ -132,7 +132,7 @@ def test_failed_samples_are_recorded_with_their_reason(monkeypatch) -> None:
     assert all(r["failed"] for r in rows) and "bulk_modulus" in rows[0]["reason"]
     assert all(math.isnan(r["a_total"]) for r in rows)
 
-    def fake(study, gains, name, params, load, road, errors):
+    def fake(study, gains, name, params, load, road, errors, sensors):
         if name == "virtual-accumulator":
             raise SimulationError("the integration left the finite numbers at t = 1.2 s")
         return {"a_total": 2.0}

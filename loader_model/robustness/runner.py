@@ -19,7 +19,12 @@ import numpy as np
 
 from loader_model.robustness.gains import Gains, max_pole_real
 from loader_model.robustness.sampling import SampleSpec
-from loader_model.robustness.sensors import corrupted_fixed_point, sensor_controller, sensor_errors
+from loader_model.robustness.sensors import (
+    corrupted_fixed_point,
+    sensor_controller,
+    sensor_errors,
+    sensor_model,
+)
 from loader_model.robustness.study import Study
 from loader_model.simulation.simulator import course_input, simulate
 
@@ -132,9 +137,11 @@ def _run(
     load: tuple[str, float],
     road: Any,
     errors: np.ndarray,
+    sensors: Any = None,
 ) -> dict:
     """Simulate controller ``name`` on one plant; ``load`` is (case, pressure norm ‖p_A‖ in Pa),
-    ``errors`` the sensor errors (:func:`~loader_model.robustness.sensors.sensor_errors`)."""
+    ``errors`` the sensors' gains and offsets (:func:`~loader_model.robustness.sensors.sensor_errors`),
+    ``sensors`` their noise (:func:`~loader_model.robustness.sensors.sensor_model`)."""
     from loader_model.control.settings import default_settings
     from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
     from loader_model.simulation.ride_control import controller_setup
@@ -161,6 +168,7 @@ def _run(
             "controller": sensor_controller(kind),
             "settings": np.concatenate([vector, errors]),
             "controller_state": state,
+            "sensors": sensors,
         }
     result = simulate(road, params, duration_s=study.duration_s, **arguments)
     return _metrics(result, float(params[PLANT_PARAMETER_NAMES.index("V_p_max")]))
@@ -178,6 +186,7 @@ def run_sample(study: Study, gains: Gains, spec: SampleSpec) -> list[dict[str, A
     }
     rows = []
     errors = sensor_errors(dict(spec.values))
+    noise = sensor_model(dict(spec.values), spec.road_seed)
     try:
         params, load = sample_plant_vector(spec)
         road = course_input(_course(study, spec), params)
@@ -200,7 +209,7 @@ def run_sample(study: Study, gains: Gains, spec: SampleSpec) -> list[dict[str, A
         else:
             try:
                 case = (spec.load, float(load.pressure_normalisation))
-                row |= _run(study, gains, name, params, case, road, errors)
+                row |= _run(study, gains, name, params, case, road, errors, noise)
                 row |= {"failed": False, "reason": ""}
             except Exception as error:  # a failed run never stops the study
                 row |= {"failed": True, "reason": _reason(error)}

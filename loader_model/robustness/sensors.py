@@ -1,16 +1,17 @@
-"""Sensor calibration errors of a study: a scale factor and an offset per controller sensor.
+"""Sensor errors of a study: scale factor, offset and white noise per controller sensor.
 
 The controllers read five plant outputs (:data:`~loader_model.control.sensors.SENSOR_NAMES`:
 accelerometers ``f_Hx``, ``f_Hy``, ``f_Ny``, boom angle ``phi``, pressure ``p_A``). A study may vary
-``sensors.<name>.gain`` (reading = gain × true value + offset) and ``sensors.<name>.offset`` in
-[parameters], like a parameter-file field, with the unit and the validated range of
-:data:`SENSOR_ERROR_FIELDS`. They act inside the compiled 1 kHz period: :func:`sensor_controller`
-wraps the ride controller's Function, corrupting the readings it sees, with the ten errors as
-extra settings (so one compiled period serves every sample). The controller starts at its fixed
-point for the corrupted static readings (it has run at the biased readings before the course).
-Random noise is not modelled: the simulator's compiled period has no noise input (see
-:mod:`loader_model.experiments.trials`). The stability margin of the gains is computed with ideal
-sensors.
+``sensors.<name>.gain``, ``sensors.<name>.offset`` (reading = gain × true value + offset) and
+``sensors.<name>.noise_std`` in [parameters], like a parameter-file field, with the unit and the
+validated range of :data:`SENSOR_ERROR_FIELDS`. All act inside the compiled 1 kHz period. Gain and
+offset: :func:`sensor_controller` wraps the ride controller's Function, corrupting the readings it
+sees, with the ten errors as extra settings (one compiled period serves every sample); the
+controller starts at its fixed point for the corrupted static readings (it has run at the biased
+readings before the course). Noise: the simulator's
+:class:`~loader_model.control.sensors.SensorModel` (:func:`sensor_model`), seeded by the sample's
+road seed, so every controller of a sample sees the same draw. The stability margin of the gains
+is computed with ideal sensors.
 """
 
 from __future__ import annotations
@@ -22,7 +23,13 @@ import numpy as np
 
 from loader_model.parameter_fields import Range
 
-__all__ = ["SENSOR_ERROR_FIELDS", "corrupted_fixed_point", "sensor_controller", "sensor_errors"]
+__all__ = [
+    "SENSOR_ERROR_FIELDS",
+    "corrupted_fixed_point",
+    "sensor_controller",
+    "sensor_errors",
+    "sensor_model",
+]
 
 _SENSORS = ("f_Hx", "f_Hy", "f_Ny", "phi", "p_A")
 _GAIN = Range(0.5, 2.0, reason="a sensor within a factor 2 of its calibration")
@@ -33,10 +40,18 @@ _OFFSETS = {
     "phi": ("rad", Range(-0.576, 0.576, reason="within the 33 deg angle norm (section 3.3)")),
     "p_A": ("Pa", Range(-5e6, 5e6, reason="within 50 bar, a quarter of the 200 bar norm")),
 }
-#: ``sensors.<name>.gain|offset`` -> (SI unit, validated range).
+_NOISE = {
+    "f_Hx": ("m/s^2", Range(0.0, 1.0, reason="up to 0.1 g r.m.s. per sample")),
+    "f_Hy": ("m/s^2", Range(0.0, 1.0, reason="up to 0.1 g r.m.s. per sample")),
+    "f_Ny": ("m/s^2", Range(0.0, 1.0, reason="up to 0.1 g r.m.s. per sample")),
+    "phi": ("rad", Range(0.0, 0.0175, reason="up to 1 deg r.m.s. per sample")),
+    "p_A": ("Pa", Range(0.0, 1e6, reason="up to 10 bar r.m.s. per sample")),
+}
+#: ``sensors.<name>.gain|offset|noise_std`` -> (SI unit, validated range).
 SENSOR_ERROR_FIELDS: Mapping[str, tuple[str, Range]] = {
     **{f"sensors.{n}.gain": ("-", _GAIN) for n in _SENSORS},
     **{f"sensors.{n}.offset": _OFFSETS[n] for n in _SENSORS},
+    **{f"sensors.{n}.noise_std": _NOISE[n] for n in _SENSORS},
 }
 _CONTROLLERS: dict[str, Any] = {}
 
@@ -46,6 +61,15 @@ def sensor_errors(values: Mapping[str, float]) -> np.ndarray:
     gains = [values.get(f"sensors.{n}.gain", 1.0) for n in _SENSORS]
     offsets = [values.get(f"sensors.{n}.offset", 0.0) for n in _SENSORS]
     return np.array(gains + offsets, dtype=float)
+
+
+def sensor_model(values: Mapping[str, float], seed: int) -> Any:
+    """The simulator's :class:`~loader_model.control.sensors.SensorModel` with the sample's noise
+    (None without noise)."""
+    from loader_model.control.sensors import SensorModel
+
+    noise = tuple(float(values.get(f"sensors.{n}.noise_std", 0.0)) for n in _SENSORS)
+    return SensorModel(noise_std=noise, seed=int(seed)) if any(noise) else None
 
 
 def sensor_controller(kind: str) -> Any:

@@ -111,8 +111,8 @@ def parameter_field(path: str) -> tuple[str, Any]:
     """The SI unit and validated range (:class:`~loader_model.parameter_fields.Range`) of a study
     parameter path.
 
-    ``load.<field>`` is a field of the bucket-load file, ``sensors.<name>.gain|offset`` a sensor
-    error (:mod:`~loader_model.robustness.sensors`), anything else a dotted path of the loader
+    ``load.<field>`` is a field of the bucket-load file, ``sensors.<name>.gain|offset|noise_std``
+    a sensor error (:mod:`~loader_model.robustness.sensors`), anything else a dotted path of the loader
     file. Only scalar real fields can vary (not points, vectors or counts).
 
     Raises
@@ -140,7 +140,7 @@ def parameter_field(path: str) -> tuple[str, Any]:
         raise ValueError(
             f"parameters.{path}: unknown parameter{hint} (names are the parameter files' "
             "dotted paths, e.g. 'hydraulics.bulk_modulus', 'tyres.front.k_y', 'load.mass', or "
-            "'sensors.<f_Hx|f_Hy|f_Ny|phi|p_A>.<gain|offset>')"
+            "'sensors.<f_Hx|f_Hy|f_Ny|phi|p_A>.<gain|offset|noise_std>')"
         )
     metadata = leaf_metadata(*leaves[path])
     return metadata["unit"], metadata["allowed"]
