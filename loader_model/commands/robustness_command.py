@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import sys
 
 __all__ = ["HELP", "add_arguments", "run"]
 
@@ -78,6 +79,13 @@ def run(args: argparse.Namespace) -> int:
         table = run_study(
             study, folder, workers=workers, scheduler=client, progress=not args.no_progress
         )
+    except KeyboardInterrupt:
+        print(
+            f"loader-model robustness: interrupted; the finished batches are saved in "
+            f"{str(folder / 'parts')!r}: run the same command again to resume",
+            file=sys.stderr,
+        )
+        return 130
     finally:
         if client is not None:
             client.close()
