@@ -60,7 +60,23 @@ def robust_gain(study: Study) -> tuple[tuple[float, ...], list[SampleSpec]]:
 
 
 def resolve_gains(study: Study) -> Gains:
-    """K_fb per gain-based controller (``skyhook`` and ``controllers.gains``) and load."""
+    """K_fb per gain-based controller (``skyhook`` and ``controllers.gains``) and load.
+
+    Parameters
+    ----------
+    study : Study
+        The study (loads, road class, first speed, gain methods, ``robust_plants``).
+
+    Returns
+    -------
+    Gains
+        Controller name -> load -> four gains, computed once (module notes).
+
+    Raises
+    ------
+    ValueError
+        If a design fails (e.g. no sampled plant for the robust gains passes the checks).
+    """
     from loader_model.control.comfort_design import (
         TABLE3_GAIN,
         comfort_plants,

@@ -93,8 +93,23 @@ def _quantiles(values: np.ndarray) -> str:
 
 
 def report_text(study: Study, table: Any, gains: dict | None = None) -> str:
-    """The Markdown report of a finished study (``gains``: K_fb per controller and load, as
-    :func:`~loader_model.robustness.engine.read_gains` returns them, listed when given)."""
+    """The Markdown report of a finished study (module notes).
+
+    Parameters
+    ----------
+    study : Study
+        The study the table belongs to.
+    table : pyarrow.Table
+        Its result table (:func:`~loader_model.robustness.engine.run_study`).
+    gains : dict, optional
+        K_fb per controller and load (:func:`~loader_model.robustness.engine.read_gains`),
+        listed when given.
+
+    Returns
+    -------
+    str
+        Markdown, one section per controller against the baseline.
+    """
     lines = [
         f"# Robustness study: {study.name}",
         "",

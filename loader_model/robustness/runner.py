@@ -175,7 +175,23 @@ def _run(
 
 
 def run_sample(study: Study, gains: Gains, spec: SampleSpec) -> list[dict[str, Any]]:
-    """Rows of one sample, one per controller of the study (module notes)."""
+    """Rows of one sample, one per controller of the study (module notes).
+
+    Parameters
+    ----------
+    study : Study
+        The study (road, duration, controllers).
+    gains : Gains
+        K_fb per gain-based controller and load (:func:`~loader_model.robustness.gains.resolve_gains`).
+    spec : SampleSpec
+        The sample.
+
+    Returns
+    -------
+    list of dict
+        Baseline first; columns of :func:`~loader_model.robustness.table.result_schema`. A failure
+        gives ``failed`` True and ``reason``; it never raises for a bad plant or run.
+    """
     head = {
         "sample": spec.index,
         "speed_kmh": spec.speed_kmh,

@@ -75,7 +75,22 @@ def _choice(u: float, options: tuple) -> object:
 
 
 def sample_specs(study: Study, count: int | None = None, stream: int = 0) -> list[SampleSpec]:
-    """Every sample of the study, by index (module notes)."""
+    """Every sample of the study, by index (module notes).
+
+    Parameters
+    ----------
+    study : Study
+        A validated study.
+    count : int, optional
+        Number of samples (default ``study.samples``).
+    stream : int
+        Independent design from the same seed (0: the study's samples; 1: the robust gains' plants).
+
+    Returns
+    -------
+    list of SampleSpec
+        Ordered by index; the same for the same study, whatever runs them.
+    """
     points = design_matrix(study, count, stream)
     values = [dist.ppf(points[:, j]) for j, (_, dist) in enumerate(study.parameters)]
     offset = len(study.parameters)

@@ -207,7 +207,24 @@ def _gains(table: Any) -> tuple[tuple[str, str | tuple[float, ...]], ...]:
 
 
 def parse_study(text: str, origin: str = "study file") -> Study:
-    """Parse and validate a study file's text (module notes); ValueError naming key and value."""
+    """Parse and validate a study file's text (module notes).
+
+    Parameters
+    ----------
+    text : str
+        TOML text of the study.
+    origin : str
+        Where it came from, for messages.
+
+    Returns
+    -------
+    Study
+
+    Raises
+    ------
+    ValueError
+        Naming the origin, the key, the value and what is allowed; raised before anything runs.
+    """
     from loader_model.parameters import LOAD_CASES
     from loader_model.simulation.courses import PAPER_SPACING_M
 
