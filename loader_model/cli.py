@@ -23,6 +23,7 @@ COMMANDS: dict[str, str] = {
     "simulate": "loader_model.commands.simulate_command",
     "export-fmu": "loader_model.commands.export_fmu_command",
     "design": "loader_model.commands.design_command",
+    "robustness": "loader_model.commands.robustness_command",
 }
 
 

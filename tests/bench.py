@@ -16,6 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
+from tests import bench_robustness
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -71,6 +73,7 @@ def main() -> int:
     _bench_matrix()
     _control_design()
     _comfort_design()
+    bench_robustness.main()
     return 0
 
 

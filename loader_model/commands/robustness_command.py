@@ -1,0 +1,101 @@
+"""Robustness study (issue 14): every controller against the baseline over sampled plants, roads,
+speeds and bucket loads, from a study file (TOML; README "Robustness study", example
+``loader_model/data/robustness_example.toml``).
+
+Writes into the results folder: ``parts/`` (one Parquet file per finished batch; a rerun resumes
+from them), ``results.parquet`` and ``results.csv`` (one row per sample and controller),
+``gains.json`` (the K_fb each gain-based controller ran with) and ``report.md`` (change of a_total
+per controller, probability of worse comfort, worst cases, Spearman rank correlations, stability
+margin of the gains, failures). The study file is checked completely before anything runs or is
+written.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+__all__ = ["HELP", "add_arguments", "run"]
+
+HELP = "robustness study over sampled plants, roads, speeds and loads (local pool or Dask)"
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add ``STUDY``, ``--output``, ``--workers``, ``--scheduler``, ``--no-progress``."""
+    parser.add_argument("study", metavar="STUDY.toml", help="study file")
+    parser.add_argument(
+        "--output",
+        metavar="DIR",
+        default=None,
+        help="results folder (default: <study name>_results in the current folder); "
+        "rerunning on it resumes",
+    )
+    parser.add_argument(
+        "--workers",
+        type=int,
+        default=None,
+        metavar="N",
+        help="local worker processes (default: the number of cores; 1: this process)",
+    )
+    parser.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        default=None,
+        help="Dask scheduler address (e.g. tcp://host:8786, from dask-jobqueue); "
+        "runs on that cluster instead of the local pool",
+    )
+    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+
+
+def run(args: argparse.Namespace) -> int:
+    """Check the study and the folder, run or resume it, write and print the report."""
+    from pathlib import Path
+
+    for name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
+        os.environ.setdefault(name, "1")  # before NumPy loads BLAS: see robustness.engine
+    from loader_model.robustness.study import load_study
+
+    study = load_study(args.study)
+    workers = (os.cpu_count() or 1) if args.workers is None else args.workers
+    if workers < 1:
+        raise ValueError(f"--workers {workers}: allowed: an integer >= 1")
+    folder = Path(args.output or f"{Path(args.study).stem}_results")
+    if not folder.parent.is_dir():
+        raise ValueError(f"--output {str(folder)!r}: the folder {str(folder.parent)!r} is missing")
+    from loader_model.export import write_atomically
+    from loader_model.robustness.engine import read_gains, run_study
+    from loader_model.robustness.report import report_text
+
+    client = None
+    if args.scheduler is not None:  # connect before writing anything
+        from distributed import Client
+
+        try:
+            client = Client(args.scheduler, timeout="20s")
+        except (OSError, ValueError) as error:
+            raise ValueError(f"--scheduler {args.scheduler!r}: cannot connect: {error}") from None
+    try:
+        table = run_study(
+            study, folder, workers=workers, scheduler=client, progress=not args.no_progress
+        )
+    except KeyboardInterrupt:
+        print(
+            f"loader-model robustness: interrupted; the finished batches are saved in "
+            f"{str(folder / 'parts')!r}: run the same command again to resume",
+            file=sys.stderr,
+        )
+        return 130
+    finally:
+        if client is not None:
+            client.close()
+    text = report_text(study, table, read_gains(folder))
+    write_atomically(
+        folder / "report.md",
+        lambda path: path.write_text(text, encoding="utf-8"),
+        (".md",),
+        "report",
+    )
+    print(text, end="")
+    print(f"wrote {folder / 'results.parquet'}, {folder / 'results.csv'}, {folder / 'report.md'}")
+    return 0

@@ -1,0 +1,118 @@
+"""Skyhook gains of a study and their stability margin on each sampled plant.
+
+Gains are resolved once, in the process that plans the study, and travel to the workers as numbers:
+
+- ``table3``: K_fb of Table 3;
+- ``lqr``: output-feedback LQR (Eq. 41, 42) on the nominal design plant of each bucket load
+  (:func:`~loader_model.control.comfort_design.lqr_gain`);
+- ``optimised``: the ISO 2631 optimisation over the nominal plants of the study's loads
+  (:func:`~loader_model.control.comfort_design.optimise_gain`);
+- ``robust``: the same optimisation over ``robust_plants`` plants drawn from the study's
+  distributions with an independent design (stream 1), so the study's samples are a fresh sample.
+
+Design plants (:func:`~loader_model.control.comfort_design.comfort_plants`): ISO 8608 road of the
+study's class at its first nominal speed. The stability margin of a gain on a sample is the largest
+real part of the closed-loop poles of the plant and skyhook (the design plant's loop poles: the
+sampled plant linearised at its static equilibrium); positive means unstable.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from loader_model.robustness.sampling import SampleSpec, sample_specs
+from loader_model.robustness.study import Study
+
+__all__ = ["Gains", "max_pole_real", "resolve_gains"]
+
+#: Controller name -> bucket load -> K_fb (4 gains on the normalised ẋ_H, ẏ_H, θ̇1, φ).
+Gains = dict[str, dict[str, tuple[float, ...]]]
+
+
+def _row(gain: Any) -> tuple[float, ...]:
+    return tuple(float(g) for g in np.asarray(gain, dtype=float).ravel())
+
+
+def robust_gain(study: Study) -> tuple[tuple[float, ...], list[SampleSpec]]:
+    """Optimise K_fb over ``study.robust_plants`` plants drawn from the study (stream 1).
+
+    Returns the gain and the specs of the plants it was designed on. Samples whose plant cannot
+    be built (parameter checks) are skipped.
+    """
+    from loader_model.control.comfort_design import comfort_plants, optimise_gain
+    from loader_model.robustness.runner import sample_plant_vector
+
+    specs = sample_specs(study, study.robust_plants, stream=1)
+    plants = []
+    for spec in specs:
+        try:
+            params, _ = sample_plant_vector(spec)
+        except ValueError:
+            continue
+        speed = spec.speed_kmh * spec.speed_factor
+        (plant,) = comfort_plants((spec.load,), study.road_class, speed, {spec.load: params})
+        plants.append(plant)
+    if not plants:
+        raise ValueError("robust gains: no sampled plant passed the parameter checks")
+    return _row(optimise_gain(plants)["gain"]), specs
+
+
+def resolve_gains(study: Study) -> Gains:
+    """K_fb per gain-based controller (``skyhook`` and ``controllers.gains``) and load.
+
+    Parameters
+    ----------
+    study : Study
+        The study (loads, road class, first speed, gain methods, ``robust_plants``).
+
+    Returns
+    -------
+    Gains
+        Controller name -> load -> four gains, computed once (module notes).
+
+    Raises
+    ------
+    ValueError
+        If a design fails (e.g. no sampled plant for the robust gains passes the checks).
+    """
+    from loader_model.control.comfort_design import (
+        TABLE3_GAIN,
+        comfort_plants,
+        lqr_gain,
+        optimise_gain,
+    )
+
+    table3 = _row(TABLE3_GAIN)
+    gains: Gains = {}
+    if "skyhook" in study.compare:
+        gains["skyhook"] = dict.fromkeys(study.loads, table3)
+    methods = {spec for _, spec in study.gains if isinstance(spec, str)}
+    nominal = ()
+    if methods & {"lqr", "optimised"}:
+        nominal = comfort_plants(study.loads, study.road_class, study.speeds_kmh[0])
+    optimised = _row(optimise_gain(nominal)["gain"]) if "optimised" in methods else None
+    robust = robust_gain(study)[0] if "robust" in methods else None
+    for name, spec in study.gains:
+        if spec == "table3":
+            gains[name] = dict.fromkeys(study.loads, table3)
+        elif spec == "lqr":
+            gains[name] = {p.name: _row(lqr_gain(p).gain) for p in nominal}
+        elif spec == "optimised":
+            gains[name] = dict.fromkeys(study.loads, optimised)
+        elif spec == "robust":
+            gains[name] = dict.fromkeys(study.loads, robust)
+        else:
+            gains[name] = dict.fromkeys(study.loads, tuple(spec))
+    return gains
+
+
+def max_pole_real(
+    params: np.ndarray, load: str, speed_kmh: float, road_class: str, gains: list[Any]
+) -> list[float]:
+    """Largest real part [rad/s] of the plant-and-skyhook poles for each gain on one plant."""
+    from loader_model.control.comfort_design import comfort_plants, evaluate_gain
+
+    (plant,) = comfort_plants((load,), road_class, speed_kmh, {load: params})
+    return [float(np.max(evaluate_gain([plant], g)[0].loop_poles.real)) for g in gains]

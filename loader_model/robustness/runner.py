@@ -1,0 +1,241 @@
+"""One sample of a study: build its plant and road, run every controller, one row per controller.
+
+Composes what exists: the parameter files' validated :func:`~loader_model.parameters.replace`,
+:func:`~loader_model.plant.plant_parameters.plant_parameter_vector`, the courses, the simulator and
+the ride controllers. Nothing here stops a study: a sample whose plant fails the parameter checks,
+or a run that raises (:class:`~loader_model.simulation.simulator.SimulationError` when the
+integration leaves the finite numbers, e.g. an unstable closed loop), gives rows with ``failed``
+true and the reason. CasADi Functions are built once per worker process (module-level caches here
+and in :mod:`~loader_model.simulation.stepper`), never per sample.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from typing import Any
+
+import numpy as np
+
+from loader_model.robustness.gains import Gains, max_pole_real
+from loader_model.robustness.sampling import SampleSpec
+from loader_model.robustness.sensors import (
+    corrupted_fixed_point,
+    sensor_controller,
+    sensor_errors,
+    sensor_model,
+)
+from loader_model.robustness.study import Study
+from loader_model.simulation.simulator import course_input, simulate
+
+__all__ = ["AXES", "run_batch", "run_sample", "sample_plant_vector"]
+
+#: ISO 2631-1 axes of the seat evaluation (x = fore-aft, z = vertical, pitch).
+AXES: tuple[str, ...] = ("x", "z", "pitch")
+_CONTROLLERS: dict[str, Any] = {}
+_IDEAL = np.array([1.0] * 5 + [0.0] * 5)
+
+
+def _hold_controller() -> Any:
+    """The baseline's constant command, taken from its one setting, built once per process.
+
+    :func:`~loader_model.simulation.controllers.hold_controller` bakes u0 into the Function, so
+    every sampled plant would compile a new period; here u0 is a setting.
+    """
+    import casadi as ca
+
+    from loader_model.plant.plant import OUTPUT_NAMES
+
+    if "hold" not in _CONTROLLERS:
+        z, y = ca.SX.sym("z", 0), ca.SX.sym("y", len(OUTPUT_NAMES))
+        settings = ca.SX.sym("settings", 1)
+        _CONTROLLERS["hold"] = ca.Function(
+            "hold_setting",
+            [z, y, settings],
+            [z, settings[0]],
+            ["z", "y", "settings"],
+            ["z_next", "u"],
+        )
+    return _CONTROLLERS["hold"]
+
+
+def sample_plant_vector(spec: SampleSpec) -> tuple[np.ndarray, Any]:
+    """Plant parameter vector (accumulator shut) and bucket load of a sample.
+
+    Raises
+    ------
+    ValueError
+        From the parameter files' range and consistency checks.
+    """
+    from loader_model import parameters
+    from loader_model.plant.plant_parameters import plant_parameter_vector
+
+    plant = [(p, v) for p, v in spec.values if not p.startswith("sensors.")]
+    loader_updates = {p: v for p, v in plant if not p.startswith("load.")}
+    load_updates = {p.removeprefix("load."): v for p, v in plant if p.startswith("load.")}
+    loader, load = parameters.default_loader(), parameters.bucket_load(spec.load)
+    if loader_updates:
+        loader = parameters.replace(loader, loader_updates)
+    if load_updates:
+        load = parameters.replace(load, load_updates)
+    return plant_parameter_vector(loader, load, check=True), load
+
+
+def _course(study: Study, spec: SampleSpec) -> Any:
+    from loader_model.simulation.courses import iso8608_course, paper_course
+
+    if study.road == "course":
+        course = paper_course(
+            spec.speed_kmh, position_jitter_m=study.position_jitter_m, seed=spec.road_seed
+        )
+        return dataclasses.replace(course, speed_m_s=course.speed_m_s * spec.speed_factor)
+    speed = spec.speed_kmh * spec.speed_factor
+    return iso8608_course(
+        study.road_class, speed, length_m=study.road_length_m, seed=spec.road_seed
+    )
+
+
+def _metrics(result: Any, max_displacement: float) -> dict[str, float]:
+    """Seat values (Eq. 49, 50), pressure peaks, events. Pump saturation: the time the command
+    is at or beyond V_p,max (the controllers clip at the limit, so the simulator's
+    ``pump_saturation`` event, strictly beyond it, does not see them)."""
+    evaluation = result.seat_evaluation()
+    rms = {axis.axis: float(axis.weighted_rms) for axis in evaluation.axes}
+    period = float(result.metadata["period_s"])
+    at_limit = np.abs(result["V_p_ref"]) >= max_displacement * (1.0 - 1e-9)
+    saturated = period * np.count_nonzero(at_limit)
+    return {
+        **{f"a_w_{axis}": rms.get(axis, math.nan) for axis in AXES},
+        "a_total": float(evaluation.total_m_s2),
+        "p_A_max_Pa": float(np.max(result["p_A"])),
+        "p_A_min_Pa": float(np.min(result["p_A"])),
+        "p_B_max_Pa": float(np.max(result["p_B"])),
+        "pump_saturation_s": float(saturated),
+        "tyre_lift_offs": float(sum(e.kind == "tyre_off_ground" for e in result.events)),
+    }
+
+
+_EMPTY = dict.fromkeys(
+    [
+        *(f"a_w_{a}" for a in AXES),
+        *("a_total", "p_A_max_Pa", "p_A_min_Pa", "p_B_max_Pa"),
+        *("pump_saturation_s", "tyre_lift_offs"),
+    ],
+    math.nan,
+)
+
+
+def _reason(error: BaseException) -> str:
+    return f"{type(error).__name__}: {error}"[:500]
+
+
+def _run(
+    study: Study,
+    gains: Gains,
+    name: str,
+    params: np.ndarray,
+    load: tuple[str, float],
+    road: Any,
+    errors: np.ndarray,
+    sensors: Any = None,
+) -> dict:
+    """Simulate controller ``name`` on one plant; ``load`` is (case, pressure norm ‖p_A‖ in Pa),
+    ``errors`` the sensors' gains and offsets (:func:`~loader_model.robustness.sensors.sensor_errors`),
+    ``sensors`` their noise (:func:`~loader_model.robustness.sensors.sensor_model`)."""
+    from loader_model.control.settings import default_settings
+    from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
+    from loader_model.simulation.ride_control import controller_setup
+
+    if name == "passive":
+        params = params.copy()
+        params[PLANT_PARAMETER_NAMES.index("accumulator_on")] = 1.0
+    if name in ("baseline", "passive"):
+        from loader_model.plant.equilibrium import static_state
+
+        arguments: dict[str, Any] = {
+            "controller": _hold_controller(),
+            "settings": [static_state(params)[1]],
+        }
+    else:
+        kind = "virtual-accumulator" if name == "virtual-accumulator" else "skyhook"
+        settings = default_settings()
+        if name in gains:
+            settings = dataclasses.replace(settings, k_fb=gains[name][load[0]])
+        vector, state = controller_setup(kind, params, load[1], settings)
+        if np.any(errors != _IDEAL):
+            state = corrupted_fixed_point(kind, vector, params, errors)
+        arguments = {
+            "controller": sensor_controller(kind),
+            "settings": np.concatenate([vector, errors]),
+            "controller_state": state,
+            "sensors": sensors,
+        }
+    result = simulate(road, params, duration_s=study.duration_s, **arguments)
+    return _metrics(result, float(params[PLANT_PARAMETER_NAMES.index("V_p_max")]))
+
+
+def run_sample(study: Study, gains: Gains, spec: SampleSpec) -> list[dict[str, Any]]:
+    """Rows of one sample, one per controller of the study (module notes).
+
+    Parameters
+    ----------
+    study : Study
+        The study (road, duration, controllers).
+    gains : Gains
+        K_fb per gain-based controller and load (:func:`~loader_model.robustness.gains.resolve_gains`).
+    spec : SampleSpec
+        The sample.
+
+    Returns
+    -------
+    list of dict
+        Baseline first; columns of :func:`~loader_model.robustness.table.result_schema`. A failure
+        gives ``failed`` True and ``reason``; it never raises for a bad plant or run.
+    """
+    head = {
+        "sample": spec.index,
+        "speed_kmh": spec.speed_kmh,
+        "speed_factor": spec.speed_factor,
+        "load": spec.load,
+        "road_seed": spec.road_seed,
+        **dict(spec.values),
+    }
+    rows = []
+    errors = sensor_errors(dict(spec.values))
+    noise = sensor_model(dict(spec.values), spec.road_seed)
+    try:
+        params, load = sample_plant_vector(spec)
+        road = course_input(_course(study, spec), params)
+        setup_error = None
+    except Exception as error:  # a failed sample never stops the study
+        setup_error = _reason(error)
+    poles: dict[str, float] = {}
+    if setup_error is None and gains:
+        try:
+            speed = spec.speed_kmh * spec.speed_factor
+            gain_list = [gains[n][spec.load] for n in gains]
+            reals = max_pole_real(params, spec.load, speed, study.road_class, gain_list)
+            poles = dict(zip(gains, reals, strict=True))
+        except Exception:  # the margin is then reported as missing (NaN)
+            poles = {}
+    for name in study.controllers:
+        row = {**head, "controller": name, **_EMPTY, "max_pole_real": poles.get(name, math.nan)}
+        if setup_error is not None:
+            row |= {"failed": True, "reason": setup_error}
+        else:
+            try:
+                case = (spec.load, float(load.pressure_normalisation))
+                row |= _run(study, gains, name, params, case, road, errors, noise)
+                row |= {"failed": False, "reason": ""}
+            except Exception as error:  # a failed run never stops the study
+                row |= {"failed": True, "reason": _reason(error)}
+        rows.append(row)
+    baseline = rows[0]["a_total"]
+    for row in rows:
+        row["change_percent"] = 100.0 * (row["a_total"] - baseline) / baseline
+    return rows
+
+
+def run_batch(study: Study, gains: Gains, specs: list[SampleSpec]) -> list[dict[str, Any]]:
+    """Rows of several samples, in order (one engine task)."""
+    return [row for spec in specs for row in run_sample(study, gains, spec)]
