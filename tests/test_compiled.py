@@ -107,3 +107,19 @@ def test_the_simulator_falls_back_to_the_sx_graph_without_a_compiler(tmp_path, m
     monkeypatch.setattr(stepper, "_COMPILED", {})
     period, backend = stepper.compile_period(hold_controller(1e-5))
     assert backend == "sx" and period.name() == "closed_loop_period"
+
+
+def test_plants_with_different_static_commands_share_one_compiled_period(tmp_path, monkeypatch):
+    """The default hold controller takes u0 as a setting: varied plants compile nothing new."""
+    from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES, plant_parameter_vector
+    from loader_model.simulation import stepper
+    from loader_model.simulation.courses import paper_course
+    from loader_model.simulation.simulator import course_input, simulate
+
+    monkeypatch.setenv("LOADER_MODEL_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(stepper, "_COMPILED", {})
+    for mass in (1.0, 1.05):
+        params = plant_parameter_vector(None, "empty")
+        params[PLANT_PARAMETER_NAMES.index("m_2")] *= mass
+        simulate(course_input(paper_course(9.0), params), params, duration_s=0.05)
+    assert len(list(tmp_path.glob("closed_loop_period-*.so"))) == 1

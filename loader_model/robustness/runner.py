@@ -37,25 +37,12 @@ _IDEAL = np.array([1.0] * 5 + [0.0] * 5)
 
 
 def _hold_controller() -> Any:
-    """The baseline's constant command, taken from its one setting, built once per process.
-
-    :func:`~loader_model.simulation.controllers.hold_controller` bakes u0 into the Function, so
-    every sampled plant would compile a new period; here u0 is a setting.
-    """
-    import casadi as ca
-
-    from loader_model.plant.plant import OUTPUT_NAMES
+    """The baseline's constant command as its one setting, built once per process (one compiled
+    period for every sampled plant)."""
+    from loader_model.simulation.controllers import hold_command_controller
 
     if "hold" not in _CONTROLLERS:
-        z, y = ca.SX.sym("z", 0), ca.SX.sym("y", len(OUTPUT_NAMES))
-        settings = ca.SX.sym("settings", 1)
-        _CONTROLLERS["hold"] = ca.Function(
-            "hold_setting",
-            [z, y, settings],
-            [z, settings[0]],
-            ["z", "y", "settings"],
-            ["z_next", "u"],
-        )
+        _CONTROLLERS["hold"] = hold_command_controller()
     return _CONTROLLERS["hold"]
 
 

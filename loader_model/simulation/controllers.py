@@ -17,7 +17,7 @@ import casadi as ca
 
 from loader_model.plant.plant import OUTPUT_NAMES
 
-__all__ = ["CONTROLLER_PERIOD_S", "check_controller", "hold_controller"]
+__all__ = ["CONTROLLER_PERIOD_S", "check_controller", "hold_command_controller", "hold_controller"]
 
 #: Controller period in s (the paper's 1 kHz real-time target).
 CONTROLLER_PERIOD_S = 1e-3
@@ -46,6 +46,21 @@ def hold_controller(u0: float) -> ca.Function:
         [z, ca.SX(float(u0))],
         ["z", "y", "settings"],
         ["z_next", "u"],
+    )
+
+
+def hold_command_controller() -> ca.Function:
+    """The baseline controller with the held command as its one setting.
+
+    ``hold(z, y, settings) -> (z_next, u)`` with empty z and u = settings[0] (m³/rev). The same
+    Function for every plant, so the simulator compiles its period once, whatever the static
+    command (:func:`hold_controller` builds the command into the Function).
+    """
+    z = ca.SX.sym("z", 0)
+    y = ca.SX.sym("y", len(OUTPUT_NAMES))
+    settings = ca.SX.sym("settings", 1)
+    return ca.Function(
+        "hold", [z, y, settings], [z, settings[0]], ["z", "y", "settings"], ["z_next", "u"]
     )
 
 

@@ -16,8 +16,11 @@ import numpy as np
 
 from loader_model.plant.equilibrium import static_state
 from loader_model.plant.plant import EXOGENOUS_NAMES, OUTPUT_NAMES, STATE_NAMES, plant_function
-from loader_model.simulation.controllers import CONTROLLER_PERIOD_S, check_controller
-from loader_model.simulation.controllers import hold_controller as _hold
+from loader_model.simulation.controllers import (
+    CONTROLLER_PERIOD_S,
+    check_controller,
+    hold_command_controller,
+)
 from loader_model.simulation.simulator import SimulationError, exogenous_table
 from loader_model.simulation.travel import RoadInput
 
@@ -62,7 +65,9 @@ def reference_simulation(
     """
     params = np.asarray(params, dtype=float).ravel()
     x, u_previous = static_state(params)
-    controller = check_controller(_hold(u_previous) if controller is None else controller)
+    if controller is None:
+        controller, settings = hold_command_controller(), (u_previous,)
+    controller = check_controller(controller)
     plant = plant_function()
     z = (
         np.zeros(controller.size1_in(0))

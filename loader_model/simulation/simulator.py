@@ -24,8 +24,11 @@ from loader_model.control.sensors import SENSOR_NAMES, SensorModel, quantise
 from loader_model.plant.equilibrium import static_state
 from loader_model.plant.plant import EXOGENOUS_NAMES, OUTPUT_NAMES, STATE_NAMES, plant_function
 from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
-from loader_model.simulation.controllers import CONTROLLER_PERIOD_S, check_controller
-from loader_model.simulation.controllers import hold_controller as _hold
+from loader_model.simulation.controllers import (
+    CONTROLLER_PERIOD_S,
+    check_controller,
+    hold_command_controller,
+)
 from loader_model.simulation.courses import Course
 from loader_model.simulation.events import DEFAULT_AIRBORNE_MIN_S, find_events
 from loader_model.simulation.result import SimulationResult
@@ -131,7 +134,9 @@ def simulate(
     params : array_like
         Plant parameters (:data:`~loader_model.plant.plant_parameters.PLANT_PARAMETER_NAMES`).
     controller : casadi.Function, optional
-        ``controller(z, y, settings) -> (z_next, u)``; default: hold the static command.
+        ``controller(z, y, settings) -> (z_next, u)``; default: hold the static command
+        (:func:`~loader_model.simulation.controllers.hold_command_controller` with u0 as its
+        setting).
     settings : sequence of float
         The controller's settings vector.
     controller_state : sequence of float, optional
@@ -169,7 +174,11 @@ def simulate(
     if params.size != len(PLANT_PARAMETER_NAMES):
         raise ValueError(f"params must have {len(PLANT_PARAMETER_NAMES)} values; got {params.size}")
     x0, u0 = static_state(params)
-    controller = check_controller(_hold(u0) if controller is None else controller)
+    if controller is None:  # hold the static command, given as the hold controller's setting
+        if len(settings):
+            raise ValueError("settings are for a controller; without one the pump holds u0")
+        controller, settings = hold_command_controller(), (u0,)
+    controller = check_controller(controller)
     nz = controller.size1_in(0)
     settings_vector = np.asarray(settings, dtype=float).ravel()
     if settings_vector.size != controller.size1_in(2):
