@@ -23,6 +23,7 @@ trial])``: the same seed gives the same trials whatever the order or the worker 
 from __future__ import annotations
 
 import dataclasses
+import functools
 from dataclasses import dataclass
 from typing import Any
 
@@ -220,6 +221,13 @@ def plant_for(controller: str, load: str) -> np.ndarray:
     return _plant(load, controller == "passive")
 
 
+@functools.cache
+def _trial_arguments(controller: str, load: str, k_fb: tuple[float, ...] | None) -> dict[str, Any]:
+    """:func:`controller_arguments` on :func:`plant_for`, once per process and condition (the
+    controller's fixed point takes a matrix logarithm; every trial of a condition shares it)."""
+    return controller_arguments(controller, load, plant_for(controller, load), k_fb)
+
+
 def run_trial(spec: TrialSpec) -> TrialOutcome:
     """Simulate one trial over the paper's course and evaluate the seat (section 5.3)."""
     from loader_model.control.sensors import SensorModel
@@ -236,7 +244,7 @@ def run_trial(spec: TrialSpec) -> TrialOutcome:
         params,
         sensors=SensorModel(noise_std=TRIAL_SENSOR_NOISE, seed=spec.course_seed),
         duration_s=spec.duration_s,
-        **controller_arguments(spec.controller, spec.load, params, spec.k_fb),
+        **_trial_arguments(spec.controller, spec.load, spec.k_fb),
     )
     evaluation = result.seat_evaluation()
     return TrialOutcome(
