@@ -48,6 +48,10 @@ def _case(seed: int, load: str, option: int, isothermal: bool) -> tuple[np.ndarr
     rng = np.random.default_rng(seed)
     x = x0 + SPREAD * rng.uniform(-1.0, 1.0, x0.size)
     x[STATE_NAMES.index("p_A")] = rng.uniform(-0.5e5, 2.6e7)  # to beyond the relief setting
+    # the oil in the accumulator stays below its volume V_0 (the gas pressure diverges there)
+    x[STATE_NAMES.index("V_acc")] = (
+        rng.uniform(0.0, 0.95) * params[PLANT_PARAMETER_NAMES.index("V_0")]
+    )
     w = np.concatenate([rng.normal(0, 0.02, 4), rng.normal(0, 0.5, 4), rng.normal(0, 500.0, 3)])
     u = np.array([u0 * rng.uniform(-3.0, 3.0)])
     return x, u, w, rng.normal(0, 0.5, 4), params
