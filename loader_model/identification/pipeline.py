@@ -32,8 +32,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.ndimage import maximum_filter1d, minimum_filter1d
 from scipy.signal import oaconvolve
 
+from loader_model.identification.chassis import (
+    boom_forces,
+    boom_turn,
+    mechanical_parameter_columns,
+)
 from loader_model.identification.derivatives import (
     DEFAULT_CUTOFF_HZ,
     acceleration_kernel,
@@ -41,7 +47,11 @@ from loader_model.identification.derivatives import (
     savgol_window,
 )
 from loader_model.identification.equivalent import EquivalentCylinder
-from loader_model.identification.friction import fit_friction, measured_friction
+from loader_model.identification.friction import (
+    fit_friction,
+    friction_force,
+    measured_friction,
+)
 from loader_model.identification.leakage import LeakageFit, fit_leakage
 from loader_model.identification.measurement import MeasurementRecord
 from loader_model.identification.regression import LinearFit
@@ -53,6 +63,7 @@ __all__ = [
     "identify_friction",
     "identify_leakage",
     "prepare_signals",
+    "steady_load",
 ]
 
 #: Bartlett lags of the covariances, in derivative-filter windows.
@@ -76,6 +87,11 @@ class Signals:
         :meth:`smooth`).
     keep : slice
         The samples kept after trimming the filter's ends.
+    sample_rate_hz : float
+        Sample rate in Hz.
+    pitch_full, pitch_rate, specific_force : numpy.ndarray or None
+        Records with chassis columns: untrimmed smoothed pitch θ̂1, pitch rate θ̇1 (rad/s) and
+        the specific forces filtered with h₂ (n, 3), both trimmed (:mod:`.chassis`).
     """
 
     time: np.ndarray
@@ -96,6 +112,9 @@ class Signals:
     load_mass_raw: np.ndarray
     keep: slice
     sample_rate_hz: float
+    pitch_full: np.ndarray | None = None
+    pitch_rate: np.ndarray | None = None
+    specific_force: np.ndarray | None = None
 
     def smooth(self, columns: np.ndarray) -> np.ndarray:
         """Filter untrimmed columns (n, k) like the acceleration (kernel h₂), then trim."""
@@ -131,6 +150,16 @@ def prepare_signals(
 
     keep = slice(window // 2, record.time_s.size - window // 2)
     x_full, v_full = d(position, 0), d(position, 1)
+    chassis: dict[str, np.ndarray] = {}
+    if record.has_chassis:
+        pitch = np.asarray(record.pitch_rad)
+        kernel = acceleration_kernel(window, fs)
+        filtered = oaconvolve(record.specific_force_m_s2, kernel[:, None], mode="same", axes=0)
+        chassis = {
+            "pitch_full": d(pitch, 0),
+            "pitch_rate": d(pitch, 1)[keep],
+            "specific_force": filtered[keep],
+        }
     return Signals(
         time=record.time_s[keep],
         x=x_full[keep],
@@ -150,21 +179,35 @@ def prepare_signals(
         load_mass_raw=record.load_mass_kg,
         keep=keep,
         sample_rate_hz=fs,
+        **chassis,
     )
 
 
 @dataclass(frozen=True)
 class FrictionResult:
-    """Friction fit with the measured friction it was fitted to (for the fit plot)."""
+    """Friction fit with the measured friction it was fitted to (for the fit plot).
+
+    ``used`` marks the samples of the fit: those whose derivative window sees one bucket-load
+    mass (a load changing within the window mixes parameter sets in the filter).
+    """
 
     fit: LinearFit
     measured: np.ndarray
     signals: Signals
+    used: np.ndarray
 
     @property
     def modelled(self) -> np.ndarray:
-        """The fitted Eq. 46, filtered like the measured friction."""
-        return self.measured - self.fit.residuals
+        """The fitted Eq. 46 at every sample, filtered like the measured friction."""
+        s = self.signals
+        return s.smooth(friction_force(self.fit.values, s.v_full, s.p_a_raw)[:, None])[:, 0]
+
+
+def steady_load(signals: Signals) -> np.ndarray:
+    """True where the bucket-load mass is constant over the derivative window (trimmed)."""
+    mass = signals.load_mass_raw
+    high = maximum_filter1d(mass, signals.window)
+    return (high == minimum_filter1d(mass, signals.window))[signals.keep]
 
 
 def identify_friction(
@@ -172,29 +215,60 @@ def identify_friction(
 ) -> FrictionResult:
     """Table 4 from filtered signals: F_f by Eq. 44 (corrected), fit of Eq. 46.
 
-    F_L and m_eq take the lever at each sample's boom angle (:mod:`.equivalent`), with the
-    h'/h² ẋ² term of the turning boom; the chassis is taken at rest.
+    With chassis signals (and a cylinder built by
+    :meth:`~.equivalent.EquivalentCylinder.from_parameters`), the cylinder force that moves the
+    boom comes from the boom's equation of motion on the moving chassis (:mod:`.chassis`): its
+    gravity part, a function of positions, is filtered with h₂ like the pressures; its dynamic
+    part is evaluated at the filtered derivatives. Without them, F_L and m_eq take the lever at
+    each sample's boom angle (:mod:`.equivalent`) with the chassis at rest.
     """
     s = signals
-    load_force = cylinder.load_force(s.load_mass_raw, s.x_full)
-    smoothed = s.smooth(np.column_stack((s.p_a_raw, s.p_b_raw, load_force)))
+    smoothed = s.smooth(np.column_stack((s.p_a_raw, s.p_b_raw)))
+    if s.specific_force is not None and cylinder.parameters is not None:
+        load_force, inertial_force = _chassis_forces(s, cylinder)
+    else:
+        load_force = s.smooth(cylinder.load_force(s.load_mass_raw, s.x_full)[:, None])[:, 0]
+        inertial_force = cylinder.inertial_force(s.load_mass, s.x, s.v, s.a)
     measured = measured_friction(
         cylinder.area_m2,
         cylinder.alpha,
         smoothed[:, 0],
         smoothed[:, 1],
-        smoothed[:, 2],
-        cylinder.inertial_force(s.load_mass, s.x, s.v, s.a),
+        load_force,
+        inertial_force,
     )
+    used = steady_load(s)
     fit = fit_friction(
-        signals.v_full,
-        signals.p_a_raw,
-        measured,
-        smooth=signals.smooth,
-        lags=COVARIANCE_LAGS_PER_WINDOW * signals.window,
+        s.v_full,
+        s.p_a_raw,
+        measured[used],
+        smooth=lambda columns: s.smooth(columns)[used],
+        lags=COVARIANCE_LAGS_PER_WINDOW * s.window,
         level=level,
     )
-    return FrictionResult(fit, measured, signals)
+    return FrictionResult(fit, measured, s, used)
+
+
+def _chassis_forces(s: Signals, cylinder: EquivalentCylinder) -> tuple[np.ndarray, np.ndarray]:
+    """(h₂-filtered gravity part, dynamic part) of the boom's cylinder force (:mod:`.chassis`)."""
+    loader, load = cylinder.parameters
+    params = mechanical_parameter_columns(loader, load, s.load_mass_raw)
+    retracted = loader.cylinders.retracted_length
+    psi = boom_turn(s.x_full, retracted, params, cylinder.boom_turn(s.x_full))
+    zeros = np.zeros_like(psi)  # the gravity part depends on positions only
+    gravity, _ = boom_forces(
+        s.pitch_full, psi, zeros, zeros, zeros, np.zeros((psi.size, 3)), params
+    )
+    _, dynamic = boom_forces(
+        s.pitch_full[s.keep],
+        psi[s.keep],
+        s.pitch_rate,
+        s.v,
+        s.a,
+        s.specific_force,
+        params[:, s.keep],
+    )
+    return s.smooth(gravity[:, None])[:, 0], dynamic
 
 
 def identify_leakage(

@@ -45,6 +45,7 @@ import numpy as np
 
 import loader_model_generated as generated
 from loader_model.identification.equivalent import EquivalentCylinder
+from loader_model.identification.lift_test import TABLE4, TABLE5, LiftProfile, SensorOptions
 from loader_model.identification.measurement import MeasurementRecord
 from loader_model.parameter_schema import BucketLoad, LoaderParameters
 
@@ -57,84 +58,7 @@ __all__ = [
     "synthesize",
 ]
 
-#: Table 4 in SI units, errata 10 reading (f_C 10.7 N/bar = 1.07e-4 N/Pa).
-TABLE4 = {"f_s": 17.0e3, "tau_s": 40.0, "gamma": 5.7, "f_c": 1.07e-4, "f_v": 8.13e3}
-#: Table 5 in SI units: C [m³/s], K_oil [Pa], k_Lp [m³/(s·Pa)], k_Lv [m²].
-TABLE5 = {"C": -3.2e-4, "K_oil": 1.64e9, "k_Lp": 2.87e-11, "k_Lv": -5.0e-4}
-
 _N_MECH = len(generated.PARAMETER_NAMES)
-
-
-@dataclass(frozen=True)
-class SensorOptions:
-    """Sensor model of the synthetic record (each channel: true + offset + noise, quantised).
-
-    Attributes
-    ----------
-    sample_rate_hz : float
-        Logging rate in Hz (also the integration grid).
-    pressure_noise_pa, position_noise_m, flow_noise_m3_s : float
-        Standard deviations of white Gaussian noise.
-    pressure_step_pa, position_step_m, flow_step_m3_s : float
-        Quantisation steps (0: none).
-    pressure_offset_pa, position_offset_m : float
-        Constant offsets of p_A and p_B, and of x_cyl.
-    flow_offset_m3_s : float
-        Offset of the pump-flow estimate; Table 5's C by default.
-    outlier_fraction : float
-        Fraction of flow samples that drop out to 0 (sensor drop-outs).
-    seed : int
-        Seed of ``numpy.random.default_rng`` (noise, outliers and the test profile).
-    """
-
-    sample_rate_hz: float = 500.0
-    pressure_noise_pa: float = 0.5e5
-    position_noise_m: float = 5e-5
-    flow_noise_m3_s: float = 1.0e-4
-    pressure_step_pa: float = 0.1e5
-    position_step_m: float = 1e-5
-    flow_step_m3_s: float = 1e-6
-    pressure_offset_pa: float = 0.0
-    position_offset_m: float = 0.0
-    flow_offset_m3_s: float = TABLE5["C"]
-    outlier_fraction: float = 0.0
-    seed: int = 0
-
-
-@dataclass(frozen=True)
-class LiftProfile:
-    """The lift test: cycles of extend, hold, retract, hold with random rates and loads.
-
-    Attributes
-    ----------
-    cycles : int
-        Number of extend-retract cycles.
-    speed_range_m_s : (float, float)
-        Range of the cylinder speeds, drawn per stroke, in m/s.
-    ramp_range_s : (float, float)
-        Range of the speed ramp durations (raised cosine) in s.
-    position_range_m : (float, float)
-        Bottom and highest top of the strokes, piston position in m; each top is drawn in the
-        upper half. The run starts at the plant's static position and moves to the bottom
-        during the first hold.
-    hold_s : float
-        Hold between strokes in s (loads change during the hold at the bottom).
-    load_masses_kg : tuple of float
-        Bucket loads drawn per cycle, in kg (> 0; the paper: 340 kg and 770 kg).
-    position_gain : float
-        k_x of the position law in 1/s.
-    integral_gain : float
-        k_i of the position law in 1/s².
-    """
-
-    cycles: int = 12
-    speed_range_m_s: tuple[float, float] = (0.02, 0.15)
-    ramp_range_s: tuple[float, float] = (0.4, 1.0)
-    position_range_m: tuple[float, float] = (0.03, 0.28)
-    hold_s: float = 1.5
-    load_masses_kg: tuple[float, ...] = (340.0, 555.0, 770.0)
-    position_gain: float = 8.0
-    integral_gain: float = 8.0
 
 
 @dataclass(frozen=True)
@@ -147,9 +71,9 @@ class SyntheticRecording:
         What the sensors logged (write it with ``write_measurement_csv(path, record.columns())``).
     truth : dict of str to numpy.ndarray
         True ``x``, ``v``, ``a`` (ẍ), ``p_a``, ``p_b``, ``dp_a`` (ṗ_A), ``flow`` (Q_pump),
-        ``force`` (F_act), ``phi`` (boom angle from the static one), ``theta_1`` and
-        ``thetadd_1`` (chassis pitch and its acceleration), ``command`` (V_p,ref) and
-        ``load_mass`` at the
+        ``force`` (F_act), ``phi`` (boom angle from the static one), ``theta_1``,
+        ``thetad_1``, ``thetadd_1`` (chassis pitch, its rate and acceleration), ``f_Hx``,
+        ``f_Hy``, ``f_Ny`` (specific forces), ``command`` (V_p,ref) and ``load_mass`` at the
         sample times, from the plant's state and right-hand side; ``outliers`` (1: dropped).
     cylinder : EquivalentCylinder
         The equivalent cylinder of the loader and load case (what an estimator would use).
@@ -180,6 +104,10 @@ def _schedule(
         top = rng.uniform(low + 0.5 * (high - low), high)
         for direction in (1.0, -1.0):
             speed = rng.uniform(*profile.speed_range_m_s)
+            if profile.log_speeds:  # the same draw, spread evenly over the decades
+                low_speed, high_speed = profile.speed_range_m_s
+                fraction = (speed - low_speed) / (high_speed - low_speed)
+                speed = low_speed * (high_speed / low_speed) ** fraction
             ramp = rng.uniform(*profile.ramp_range_s)
             pieces.append((direction * speed, ramp, top - low))
     durations = [abs(d / s) + r for s, r, d in pieces]  # ramps: half the ramp lost each end
@@ -250,6 +178,10 @@ def _lift_functions() -> tuple[ca.Function, ca.Function]:
                 x[STATE_NAMES.index("theta_1")],
                 y[out["thetadd_1"]],
                 command,
+                y[out["thetad_1"]],
+                y[out["f_Hx"]],
+                y[out["f_Hy"]],
+                y[out["f_Ny"]],
             )
         ],
         ["x", "u"],
@@ -271,6 +203,10 @@ _TRUTH_NAMES = (
     "theta_1",
     "thetadd_1",
     "command",
+    "thetad_1",
+    "f_Hx",
+    "f_Hy",
+    "f_Ny",
 )
 
 
@@ -381,6 +317,15 @@ def synthesize(
         load_mass_kg=mass.copy(),
         flow_m3_s=flow,
     )
+    if o.chassis:  # drawn after the other channels: their noise does not change with them
+        accel = (o.acceleration_noise_m_s2, o.acceleration_step_m_s2, 0.0)
+        record = dataclasses.replace(
+            record,
+            pitch_rad=sense(truth["theta_1"], o.pitch_noise_rad, 0.0, 0.0),
+            specific_force_m_s2=np.column_stack(
+                [sense(truth[name], *accel) for name in ("f_Hx", "f_Hy", "f_Ny")]
+            ),
+        )
     truth["outliers"] = outliers.astype(float)
     fr, lk = loader.friction, loader.leakage
     parameters = {
