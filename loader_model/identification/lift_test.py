@@ -1,13 +1,16 @@
 """Options of the synthetic lift test: the paper's Tables 4 and 5, sensors, test profile.
 
 Used by :mod:`.synthetic`; kept apart so that options are importable without CasADi.
+:func:`reference_schedule` turns a profile into the reference of the position law.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-__all__ = ["TABLE4", "TABLE5", "LiftProfile", "SensorOptions"]
+import numpy as np
+
+__all__ = ["TABLE4", "TABLE5", "LiftProfile", "SensorOptions", "reference_schedule"]
 
 #: Table 4 in SI units, errata 10 reading (f_C 10.7 N/bar = 1.07e-4 N/Pa).
 TABLE4 = {"f_s": 17.0e3, "tau_s": 40.0, "gamma": 5.7, "f_c": 1.07e-4, "f_v": 8.13e3}
@@ -124,3 +127,52 @@ class LiftProfile:
         f_C; with the default 0.02-0.15 m/s, f_s, γ and f_C were ±25-45 % (95 % intervals).
         """
         return cls(speed_range_m_s=(0.01, 0.25), log_speeds=True)
+
+
+def _raised_cosine_ramp(t: np.ndarray, start: float, duration: float) -> np.ndarray:
+    u = np.clip((t - start) / duration, 0.0, 1.0)
+    return 0.5 - 0.5 * np.cos(np.pi * u)
+
+
+def reference_schedule(
+    profile: LiftProfile, rng: np.random.Generator, dt: float, x_start: float
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Reference of the lift test on the sample grid: time, v_ref, x_ref and load mass.
+
+    Strokes from the bottom to random tops and back with raised-cosine speed ramps, a hold
+    between strokes (loads change during the hold at the bottom), starting at ``x_start``.
+    """
+    low, high = profile.position_range_m
+    pieces: list[tuple[float, float, float]] = []  # (speed, ramp, distance) per stroke
+    loads = rng.choice(profile.load_masses_kg, size=profile.cycles)
+    for _ in range(profile.cycles):
+        top = rng.uniform(low + 0.5 * (high - low), high)
+        for direction in (1.0, -1.0):
+            speed = rng.uniform(*profile.speed_range_m_s)
+            if profile.log_speeds:  # the same draw, spread evenly over the decades
+                low_speed, high_speed = profile.speed_range_m_s
+                fraction = (speed - low_speed) / (high_speed - low_speed)
+                speed = low_speed * (high_speed / low_speed) ** fraction
+            ramp = rng.uniform(*profile.ramp_range_s)
+            pieces.append((direction * speed, ramp, top - low))
+    durations = [abs(d / s) + r for s, r, d in pieces]  # ramps: half the ramp lost each end
+    total = profile.hold_s + sum(durations) + profile.hold_s * len(pieces)
+    t = np.arange(0.0, total + dt, dt)
+    v_ref = np.zeros_like(t)
+    mass = np.full_like(t, loads[0])
+    start = profile.hold_s
+    for k, ((speed, ramp, _), duration) in enumerate(zip(pieces, durations, strict=True)):
+        v_ref += speed * (
+            _raised_cosine_ramp(t, start, ramp)
+            - _raised_cosine_ramp(t, start + duration - ramp, ramp)
+        )
+        start += duration + profile.hold_s
+        cycle = (k + 1) // 2
+        if k % 2 == 1 and cycle < profile.cycles:  # at the bottom: change the load
+            step = loads[cycle] - loads[cycle - 1]
+            mass += step * _raised_cosine_ramp(t, start - profile.hold_s, 0.8 * profile.hold_s)
+    # from the static position to the bottom during the first hold
+    approach = (x_start - low) * (1.0 - _raised_cosine_ramp(t, 0.0, 0.8 * profile.hold_s))
+    v_approach = np.gradient(approach, dt)
+    x_ref = low + np.concatenate(([0.0], np.cumsum(0.5 * (v_ref[1:] + v_ref[:-1]) * dt)))
+    return t, v_ref + v_approach, x_ref + approach, mass

@@ -19,19 +19,17 @@ static command (the pump holding the boom against the leakage), so the run start
 the plant's static equilibrium (:func:`~loader_model.plant.equilibrium.static_state`).
 
 The reference: a smooth trapezoidal velocity profile (raised-cosine ramps) of extend and retract
-strokes from the carry position (the plant's static piston position) with random speeds, ramps
-and heights; the bucket load changes, over a smooth ramp, only while the boom is held at the
-bottom. Each load mass m is its own plant parameter vector (bucket load of mass m with the
+strokes (:func:`~.lift_test.reference_schedule`); the bucket load changes only while the boom
+is held at the bottom. Each load mass m is its own plant parameter vector (bucket load of mass m with the
 centre of gravity and the inertia per kg of a load case, combined with the boom by
 :func:`~loader_model.parameters.combine_bodies`), passed per sample interval.
 
-Integration: CasADi ``cvodes`` on the sample grid, references and parameters piecewise constant
-over each sample interval. The recorded flow is the plant's ``Q_pump`` output (n V_p); p_A, p_B
-are gauge pressures. The true ẋ and ẍ come from the generated ``cylinder_kinematics`` and its
-directional derivative along the plant's ẋ.
+Integration: CasADi ``cvodes`` on the sample grid, inputs piecewise constant. Recorded flow:
+the plant's ``Q_pump`` (n V_p); p_A, p_B gauge. True ẋ and ẍ: the generated
+``cylinder_kinematics`` and its directional derivative along the plant's ẋ.
 
-Sensors: Gaussian noise, quantisation step and offset per channel; drop-outs of the flow
-estimate (reads 0) on a fraction of samples (outliers); the flow offset defaults to Table 5's C.
+Sensors: noise, quantisation and offset per channel, flow drop-outs (outliers); the flow
+offset defaults to Table 5's C; chassis channels (pitch, specific forces) drawn last.
 """
 
 from __future__ import annotations
@@ -45,7 +43,13 @@ import numpy as np
 
 import loader_model_generated as generated
 from loader_model.identification.equivalent import EquivalentCylinder
-from loader_model.identification.lift_test import TABLE4, TABLE5, LiftProfile, SensorOptions
+from loader_model.identification.lift_test import (
+    TABLE4,
+    TABLE5,
+    LiftProfile,
+    SensorOptions,
+    reference_schedule,
+)
 from loader_model.identification.measurement import MeasurementRecord
 from loader_model.parameter_schema import BucketLoad, LoaderParameters
 
@@ -86,51 +90,6 @@ class SyntheticRecording:
     truth: dict[str, np.ndarray]
     cylinder: EquivalentCylinder
     parameters: dict[str, float] = field(default_factory=dict)
-
-
-def _raised_cosine_ramp(t: np.ndarray, start: float, duration: float) -> np.ndarray:
-    u = np.clip((t - start) / duration, 0.0, 1.0)
-    return 0.5 - 0.5 * np.cos(np.pi * u)
-
-
-def _schedule(
-    profile: LiftProfile, rng: np.random.Generator, dt: float, x_start: float
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Reference on the sample grid: time, v_ref, x_ref and load mass."""
-    low, high = profile.position_range_m
-    pieces: list[tuple[float, float, float]] = []  # (speed, ramp, distance) per stroke
-    loads = rng.choice(profile.load_masses_kg, size=profile.cycles)
-    for _ in range(profile.cycles):
-        top = rng.uniform(low + 0.5 * (high - low), high)
-        for direction in (1.0, -1.0):
-            speed = rng.uniform(*profile.speed_range_m_s)
-            if profile.log_speeds:  # the same draw, spread evenly over the decades
-                low_speed, high_speed = profile.speed_range_m_s
-                fraction = (speed - low_speed) / (high_speed - low_speed)
-                speed = low_speed * (high_speed / low_speed) ** fraction
-            ramp = rng.uniform(*profile.ramp_range_s)
-            pieces.append((direction * speed, ramp, top - low))
-    durations = [abs(d / s) + r for s, r, d in pieces]  # ramps: half the ramp lost each end
-    total = profile.hold_s + sum(durations) + profile.hold_s * len(pieces)
-    t = np.arange(0.0, total + dt, dt)
-    v_ref = np.zeros_like(t)
-    mass = np.full_like(t, loads[0])
-    start = profile.hold_s
-    for k, ((speed, ramp, _), duration) in enumerate(zip(pieces, durations, strict=True)):
-        v_ref += speed * (
-            _raised_cosine_ramp(t, start, ramp)
-            - _raised_cosine_ramp(t, start + duration - ramp, ramp)
-        )
-        start += duration + profile.hold_s
-        cycle = (k + 1) // 2
-        if k % 2 == 1 and cycle < profile.cycles:  # at the bottom: change the load
-            step = loads[cycle] - loads[cycle - 1]
-            mass += step * _raised_cosine_ramp(t, start - profile.hold_s, 0.8 * profile.hold_s)
-    # from the static position to the bottom during the first hold
-    approach = (x_start - low) * (1.0 - _raised_cosine_ramp(t, 0.0, 0.8 * profile.hold_s))
-    v_approach = np.gradient(approach, dt)
-    x_ref = low + np.concatenate(([0.0], np.cumsum(0.5 * (v_ref[1:] + v_ref[:-1]) * dt)))
-    return t, v_ref + v_approach, x_ref + approach, mass
 
 
 @cache
@@ -218,7 +177,7 @@ def _load_case(load: BucketLoad, mass: float) -> BucketLoad:
 def _parameter_columns(
     loader: LoaderParameters, load: BucketLoad, masses: np.ndarray
 ) -> np.ndarray:
-    """Plant parameter vectors, one column per sample (distinct masses computed once)."""
+    """Plant parameter vectors, one column per sample (each distinct mass once)."""
     from loader_model.plant.plant_parameters import plant_parameter_vector
 
     unique, index = np.unique(masses, return_inverse=True)
@@ -272,7 +231,7 @@ def synthesize(
     cyl = EquivalentCylinder.from_parameters(loader, load)
     # p = 0 (the static state) is the operating boom angle whatever the load
     x_static = float(cyl.position_from_boom_angle(np.array([loader.geometry.boom_angle]))[0])
-    t, v_ref, x_ref, mass = _schedule(profile, rng, dt, x_static)
+    t, v_ref, x_ref, mass = reference_schedule(profile, rng, dt, x_static)
     params = _parameter_columns(loader, load, mass)
     x0, u0 = static_state(params[:, 0])
     n_pump = loader.pump.shaft_speed
