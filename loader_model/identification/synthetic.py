@@ -53,14 +53,7 @@ from loader_model.identification.lift_test import (
 from loader_model.identification.measurement import MeasurementRecord
 from loader_model.parameter_schema import BucketLoad, LoaderParameters
 
-__all__ = [
-    "TABLE4",
-    "TABLE5",
-    "LiftProfile",
-    "SensorOptions",
-    "SyntheticRecording",
-    "synthesize",
-]
+__all__ = ["TABLE4", "TABLE5", "LiftProfile", "SensorOptions", "SyntheticRecording", "synthesize"]
 
 _N_MECH = len(generated.PARAMETER_NAMES)
 
