@@ -68,7 +68,7 @@ class SensorOptions:
         magnetostrictive in-cylinder sensor) and 0.01 m/s² accelerometers; the rest default.
 
         The acceleration estimate ẍ from the position dominates the measured friction's noise:
-        with the default 50 µm, the residual of Eq. 44 was 800-880 N r.m.s. (seeds 0-2),
+        with the default 50 µm, the residual of Eq. 44 was 796-879 N r.m.s. (seeds 0-2),
         with 5 µm 100-110 N.
         """
         return cls(
