@@ -22,7 +22,10 @@ def test_synthesize_writes_a_labelled_csv(data: Path) -> None:
     lines = data.read_text().splitlines()
     assert lines[0].startswith("# synthetic lift test")
     header = next(line for line in lines if not line.startswith("#"))
-    assert header == "time [s],x_cyl [m],p_A [Pa],p_B [Pa],Q_A [m^3/s],m_load [kg]"
+    assert header == (
+        "time [s],x_cyl [m],p_A [Pa],p_B [Pa],Q_A [m^3/s],m_load [kg],"
+        "theta_1 [rad],f_Hx [m/s^2],f_Hy [m/s^2],f_Ny [m/s^2]"
+    )
 
 
 def test_friction_prints_table_4_and_writes_plot(
@@ -33,21 +36,36 @@ def test_friction_prints_table_4_and_writes_plot(
     out = capsys.readouterr().out
     for text in ("Table 4", "f_s", "tau_s", "gamma", "N/bar", "kN·s/m", "R²", "95% interval"):
         assert text in out
+    assert "the boom on the moving chassis" in out
     assert plot.stat().st_size > 10_000
 
 
-def test_friction_update_out_of_range_is_refused_and_writes_nothing(
+def test_friction_update_writes_the_identified_values_with_their_source(
     data: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    # Table 4 is not recovered from plant records (test_identification_recovery): on this short
-    # record the fit gives f_s = 5.1 MN and f_C < 0, which the parameter file's ranges refuse.
+    update = tmp_path / "loader.toml"
+    assert main(["identify", "friction", str(data), "--update", str(update)]) == 0
+    raw = tomllib.loads(update.read_text())
+    for name in ("f_s", "tau_s", "gamma", "f_c", "f_v"):
+        assert raw["friction"][name]["source"].startswith(f"identified from {data.name}")
+    assert "wrote" in capsys.readouterr().out
+
+
+def test_friction_update_out_of_range_is_refused_and_writes_nothing(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # Without the chassis columns Eq. 44 takes the chassis at rest; on this short record the
+    # fit leaves the parameter file's ranges, which the update refuses.
+    data = tmp_path / "rest.csv"
+    argv = ["identify", "synthesize", str(data), "--cycles", "3", "--sample-rate", "200"]
+    assert main([*argv, "--no-chassis"]) == 0
     update, plot = tmp_path / "loader.toml", tmp_path / "fit.png"
     argv = ["identify", "friction", str(data), "--update", str(update), "--plot", str(plot)]
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert "friction.f_s = " in err and "out of range" in err
     assert "Traceback" not in err
-    assert list(tmp_path.iterdir()) == []
+    assert list(tmp_path.iterdir()) == [data]
 
 
 def test_leakage_prints_table_5_and_updates_leakage_and_bulk_modulus(

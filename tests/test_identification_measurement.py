@@ -114,3 +114,41 @@ def test_failed_write_leaves_no_file(tmp_path: Path) -> None:
     with pytest.raises(ValueError):
         write_measurement_csv(tmp_path / "out.csv", columns)
     assert list(tmp_path.iterdir()) == []
+
+
+def test_chassis_columns_round_trip_and_convert(tmp_path: Path) -> None:
+    rng = np.random.default_rng(1)
+    t = np.arange(80) / 500.0
+    record = MeasurementRecord(
+        time_s=t,
+        position_m=rng.uniform(0, 0.4, 80),
+        p_a_pa=rng.uniform(1e6, 2e7, 80),
+        p_b_pa=rng.uniform(1e6, 3e6, 80),
+        load_mass_kg=np.full(80, 340.0),
+        flow_m3_s=rng.normal(0, 1e-3, 80),
+        pitch_rad=rng.normal(0, 0.01, 80),
+        specific_force_m_s2=rng.normal([0, 9.8, 9.8], 0.1, (80, 3)),
+    )
+    back = read_measurement_csv(write_measurement_csv(tmp_path / "r.csv", record.columns()))
+    assert back.has_chassis
+    np.testing.assert_array_equal(back.pitch_rad, record.pitch_rad)
+    np.testing.assert_array_equal(back.specific_force_m_s2, record.specific_force_m_s2)
+    header = HEADER + ",theta_1 [deg],f_Hx [g],f_Hy [g],f_Ny [m/s^2]"
+    rows = [[*row, "1.0", "0.5", "1.0", "9.0"] for row in _rows()]
+    converted = read_measurement_csv(_write(tmp_path, header, rows))
+    assert converted.pitch_rad[0] == pytest.approx(np.pi / 180.0, rel=1e-15)
+    assert converted.specific_force_m_s2[0] == pytest.approx([4.903325, 9.80665, 9.0], rel=1e-15)
+
+
+def test_chassis_columns_come_all_or_none(tmp_path: Path) -> None:
+    header = HEADER + ",theta_1 [rad],f_Hx [m/s^2]"
+    rows = [[*row, "0.0", "0.0"] for row in _rows()]
+    with pytest.raises(ValueError, match=r"chassis columns \['theta_1', 'f_Hx'\] given without"):
+        read_measurement_csv(_write(tmp_path, header, rows))
+    header = HEADER + ",theta_1 [rad],f_Hx [m/s2],f_Hy [m/s^2],f_Ny [m/s^2]"
+    rows = [[*row, "0", "0", "9.8", "9.8"] for row in _rows()]
+    with pytest.raises(
+        ValueError, match=r"column 'f_Hx' has unit 'm/s2'; allowed: \['m/s\^2', 'g'\]"
+    ):
+        read_measurement_csv(_write(tmp_path, header, rows))
+    assert not read_measurement_csv(_write(tmp_path, HEADER, _rows())).has_chassis

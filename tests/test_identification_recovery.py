@@ -21,16 +21,14 @@ moves the cylinders slower than the stand-in did (0.02-0.15 m/s, longer ramps: f
 excited the boom on its tyres into pressure swings that reached the relief valve), so the
 regressors vary less and the noise spread is about three times that of the stand-in.
 
-Table 4 is *not* recovered from plant records (``test_friction_from_the_record_is_limited_
-by_the_chassis``, a strict xfail with the measured values). The whole seal friction is 1-2 kN
-against an 80-110 kN load force, and the equivalent cylinder of Eq. 44 takes the chassis at
-rest: on its tyres the chassis pitches under the moving boom, which the record does not show.
-With the lever at each sample the model F_L + m_eq ẍ misses the plant's cylinder force by
-0.9-1.8 kN r.m.s. (constant lever: 13-16 kN); the chassis pitch acceleration, not in the
-record, explains all but 0.19 kN of it. Even with that oracle correction (exact signals, 6
-cycles) the fit missed Table 4 by f_s −84 %, τ_s −14 %, γ +417 %, f_C −69 %, f_v +42 %: the
-Stribeck part is a few hundred newtons at these speeds, so the equivalent model would have
-to be good to well below 0.2 kN.
+Table 4 is recovered in ``test_identification_friction``, from the friction test with the
+chassis sensors. The equivalent cylinder of Eq. 44 with the chassis at rest cannot do it: the
+whole seal friction is 1-2 kN against an 80-110 kN load force, and on its tyres the chassis
+pitches under the moving boom. With the lever at each sample the fixed-base model misses the
+plant's cylinder force by 0.9-1.8 kN r.m.s. (constant lever: 13-16 kN); the chassis pitch
+acceleration explains all but 0.19 kN of it (``test_lever_at_each_sample_and_what_the_chassis_
+leaves``); without the chassis columns the friction fit's residual is 1.26 kN against 10.9 N
+with them (``test_identification_friction``).
 """
 
 from __future__ import annotations
@@ -47,7 +45,6 @@ from loader_model.identification import (
     SensorOptions,
     fit_friction,
     fit_leakage,
-    identify_friction,
     identify_leakage,
     prepare_signals,
     synthesize,
@@ -56,7 +53,6 @@ from loader_model.identification.synthetic import SyntheticRecording
 
 FRICTION_TRUTH = np.array([TABLE4[k] for k in ("f_s", "tau_s", "gamma", "f_c", "f_v")])
 LEAKAGE_TRUTH = np.array([TABLE5["C"], 1.0 / TABLE5["K_oil"], TABLE5["k_Lp"], TABLE5["k_Lv"]])
-FRICTION_TOLERANCE = np.array([0.35, 0.06, 0.35, 0.35, 0.05])  # the stand-in's; not reached
 LEAKAGE_TOLERANCE = np.array([0.03, 0.07, 0.03, 0.04])
 #: 5 % flow drop-outs, robust fit (module docstring: the drop-outs near zero flow bias k_Lv).
 OUTLIER_TOLERANCE = np.array([0.05, 0.11, 0.05, 0.16])
@@ -155,19 +151,6 @@ def test_noisy_record_recovers_table_5(noisy: SyntheticRecording) -> None:
     assert np.all(_relative(leakage.values, LEAKAGE_TRUTH) < LEAKAGE_TOLERANCE)
     assert leakage.s == pytest.approx(1e-4, rel=0.05)  # the flow noise dominates
     assert np.all(leakage.low < leakage.values) and np.all(leakage.values < leakage.high)
-
-
-@pytest.mark.xfail(
-    strict=True,
-    reason="the chassis pitches on its tyres; the record cannot show it (module docstring). "
-    "Measured, noise-free 6 cycles (this record): f_s −124 %, τ_s +290 %, γ +1106 %, "
-    "f_C −0.7 %, f_v −42 %; 12 cycles: f_s −140 %, τ_s +223 %, γ +652 %, f_C −24 %, f_v +1.5 %; "
-    "seeds 0-3 noisy: f_s −141 % to +35000 %, R² 0.28-0.44, s 1.3-1.9 kN",
-)
-def test_friction_from_the_record_is_limited_by_the_chassis(clean: SyntheticRecording) -> None:
-    signals = prepare_signals(clean.record, SHAFT_SPEED)
-    friction = identify_friction(signals, clean.cylinder).fit
-    assert np.all(_relative(friction.values, FRICTION_TRUTH) < FRICTION_TOLERANCE)
 
 
 def test_robust_fit_survives_flow_dropouts_where_least_squares_does_not(

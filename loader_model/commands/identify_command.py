@@ -74,6 +74,18 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     synth.add_argument("output", metavar="OUT.csv", help="CSV file to write")
     synth.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     synth.add_argument("--cycles", type=int, default=12, help="extend/retract cycles (12)")
+    synth.add_argument(
+        "--friction-test",
+        action="store_true",
+        help="the friction test: speeds log-uniform over 0.01-0.25 m/s, a 5 um position "
+        "sensor (1 um steps) and 0.01 m/s^2 accelerometers (README); the noise options below "
+        "then default to those",
+    )
+    synth.add_argument(
+        "--no-chassis",
+        action="store_true",
+        help="leave out the chassis columns (theta_1, f_Hx, f_Hy, f_Ny)",
+    )
     defaults = {
         "sample-rate": ("HZ", "logging rate in Hz", 500.0),
         "pressure-noise": ("PA", "pressure noise std in Pa", 0.5e5),
@@ -86,10 +98,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "position-offset": ("M", "position offset in m", 0.0),
         "flow-offset": ("M3S", "flow offset in m^3/s (Table 5 C)", -3.2e-4),
         "outliers": ("FRACTION", "fraction of flow samples that drop out to 0", 0.0),
+        "pitch-noise": ("RAD", "chassis pitch noise std in rad", 8.7e-4),
+        "acceleration-noise": ("M/S2", "specific-force noise std in m/s^2", 0.05),
     }
     for name, (metavar, text, default) in defaults.items():
         synth.add_argument(
-            f"--{name}", type=float, default=default, metavar=metavar, help=f"{text} ({default:g})"
+            f"--{name}", type=float, default=None, metavar=metavar, help=f"{text} ({default:g})"
         )
     synth.add_argument(
         "--pressure-unit", choices=("Pa", "bar"), default="Pa", help="unit of p_A, p_B columns"
@@ -137,7 +151,13 @@ def _fit(args: argparse.Namespace) -> int:
     )
     if args.identify_action == "friction":
         result = identify_friction(signals, cylinder, level=args.level)
-        text = rep.format_friction(result.fit, signals.time.size)
+        header += (
+            "\nEq. 44 load: the boom on the moving chassis (columns theta_1, f_Hx, f_Hy, f_Ny)"
+            if record.has_chassis
+            else "\nEq. 44 load: chassis taken at rest (no chassis columns; on tyres this leaves "
+            "kN of error, see the README)"
+        )
+        text = rep.format_friction(result.fit, int(result.used.sum()))
         updates = rep.friction_updates(result.fit)
 
         def plot(path: str) -> object:
@@ -171,6 +191,7 @@ def _fit(args: argparse.Namespace) -> int:
 
 
 def _synthesize(args: argparse.Namespace) -> int:
+    import dataclasses
     from pathlib import Path
 
     from loader_model.identification import LiftProfile, SensorOptions, synthesize
@@ -180,25 +201,30 @@ def _synthesize(args: argparse.Namespace) -> int:
         raise ValueError(f"folder of {args.output!r} does not exist")
     if args.cycles < 1:
         raise ValueError(f"--cycles must be >= 1; got {args.cycles}")
+    base = SensorOptions.friction_test() if args.friction_test else SensorOptions()
+    fields = {
+        "sample_rate": "sample_rate_hz",
+        "pressure_noise": "pressure_noise_pa",
+        "position_noise": "position_noise_m",
+        "flow_noise": "flow_noise_m3_s",
+        "pressure_step": "pressure_step_pa",
+        "position_step": "position_step_m",
+        "flow_step": "flow_step_m3_s",
+        "pressure_offset": "pressure_offset_pa",
+        "position_offset": "position_offset_m",
+        "flow_offset": "flow_offset_m3_s",
+        "outliers": "outlier_fraction",
+        "pitch_noise": "pitch_noise_rad",
+        "acceleration_noise": "acceleration_noise_m_s2",
+    }
+    given = {f: getattr(args, a) for a, f in fields.items() if getattr(args, a) is not None}
     for name in ("sample_rate", "pressure_noise", "position_noise", "flow_noise"):
         value = getattr(args, name)
-        if not value >= 0.0 or (name == "sample_rate" and value == 0.0):
+        if value is not None and (not value >= 0.0 or (name == "sample_rate" and value == 0.0)):
             raise ValueError(f"--{name.replace('_', '-')} must be positive; got {value!r}")
-    sensors = SensorOptions(
-        sample_rate_hz=args.sample_rate,
-        pressure_noise_pa=args.pressure_noise,
-        position_noise_m=args.position_noise,
-        flow_noise_m3_s=args.flow_noise,
-        pressure_step_pa=args.pressure_step,
-        position_step_m=args.position_step,
-        flow_step_m3_s=args.flow_step,
-        pressure_offset_pa=args.pressure_offset,
-        position_offset_m=args.position_offset,
-        flow_offset_m3_s=args.flow_offset,
-        outlier_fraction=args.outliers,
-        seed=args.seed,
-    )
-    recording = synthesize(sensors, LiftProfile(cycles=args.cycles))
+    sensors = dataclasses.replace(base, seed=args.seed, chassis=not args.no_chassis, **given)
+    profile = LiftProfile.friction_test() if args.friction_test else LiftProfile()
+    recording = synthesize(sensors, dataclasses.replace(profile, cycles=args.cycles))
     columns = recording.record.columns()
     if args.pressure_unit == "bar":
         columns = {
@@ -211,10 +237,12 @@ def _synthesize(args: argparse.Namespace) -> int:
         "synthetic lift test by `loader-model identify synthesize` (hydraulic plant, shipped "
         "loader: Table 4 and 5 values)",
         f"seed {args.seed}, {args.cycles} cycles, {sensors}",
+        f"{profile}",
     )
     write_measurement_csv(args.output, columns, comments)
     samples = recording.record.time_s.size
-    print(f"wrote {args.output} ({samples} samples at {args.sample_rate:g} Hz, seed {args.seed})")
+    rate = sensors.sample_rate_hz
+    print(f"wrote {args.output} ({samples} samples at {rate:g} Hz, seed {args.seed})")
     return 0
 
 

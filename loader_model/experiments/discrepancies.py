@@ -160,11 +160,11 @@ def discrepancy_section(tables: dict[str, Rows], within: int, count: int, lifts:
         "loop; the paper gives no sensor data); the real driver's steering, roll and the "
         "left/right board timing are not modelled (planar "
         "model). The p-values therefore reflect this assumed spread, not the paper's.",
-        "11. **Table 4** is not recovered from the plant's synthetic record (known: the chassis "
-        "pitches on its tyres, which the record cannot show): the paper's value lies in the "
-        f"identified 95 % interval for {_covered(tables['table4'])} coefficients, but the "
-        f"intervals are wide (f_s: {tables['table4'][1][2]} kN in {tables['table4'][1][3]}, "
-        f"paper {tables['table4'][1][4]} kN). Table 5: "
+        "11. **Table 4** comes from the friction test with the chassis sensors (speeds "
+        "log-uniform over 0.01-0.25 m/s, 5 µm position sensor; README): the paper's value lies "
+        f"in the identified 95 % interval for {_covered(tables['table4'])} coefficients "
+        f"(f_s: {tables['table4'][1][2]} kN in {tables['table4'][1][3]}, paper "
+        f"{tables['table4'][1][4]} kN). Table 5: "
         f"{_covered(tables['table5'])} paper values inside the identified intervals.",
         "12. **Designed gains** (gains and 'designed gains' tables): the output-feedback LQR "
         "(Q = C_zᵀC_z, R = 1e-2; the paper's Q and R are not published) and the comfort-"

@@ -213,11 +213,13 @@ def _markdown(options, tables, within, count, lifts, timings) -> str:
         markdown_table(tables["table1"]) + "\n",
         "## Eq. 43: pressure loop p_A,ref → p_A (empty bucket)\n",
         markdown_table(tables["eq43"]) + "\n",
-        "## Table 4: friction (Eq. 46) from a synthetic lift test\n",
-        "The synthetic record is the hydraulic plant with Tables 4 and 5 as its true values "
-        "(`loader_model.identification.synthesize`, seed as above).\n",
+        "## Table 4: friction (Eq. 46) from a synthetic friction test\n",
+        "The synthetic records are the hydraulic plant with Tables 4 and 5 as its true values "
+        "(`loader_model.identification.synthesize`, seed as above); Table 4 from the friction "
+        "test (`LiftProfile.friction_test()`, `SensorOptions.friction_test()`, chassis "
+        "sensors).\n",
         markdown_table(tables["table4"]) + "\n",
-        "## Table 5: leakage (Eq. 47, 48) from the same record\n",
+        "## Table 5: leakage (Eq. 47, 48) from the default lift test\n",
         markdown_table(tables["table5"]) + "\n",
         "## Gains\n",
         "Skyhook gains on the normalised (ẋ_H, ẏ_H, θ̇1, φ) and their linear-model a_total "

@@ -2,8 +2,9 @@
 
 - Table 1: undamped modes of the default loader (Eq. 27-29) beside the paper's, both loads.
 - Eq. 43: poles, zeros and DC gain of the detailed pressure loop beside the reduced-order one.
-- Tables 4 and 5: friction and leakage identified from a synthetic lift-test record (seed 0)
-  of the hydraulic plant, whose true values are Tables 4 and 5 themselves.
+- Tables 4 and 5: friction (from the friction test with the chassis sensors) and leakage (from
+  the default lift test) identified from synthetic records (seed 0) of the hydraulic plant,
+  whose true values are Tables 4 and 5 themselves.
 - Gains: Table 3, output-feedback LQR and comfort-optimised
   (:mod:`~loader_model.experiments.designed_gains`), with their linear-model a_total.
 """
@@ -96,11 +97,12 @@ def identification_rows(seed: int = 0) -> tuple[Rows, Rows]:
     from loader_model.identification.report import TABLE4_ROWS, TABLE5_ROWS
     from loader_model.parameters import default_loader
 
+    speed = default_loader().pump.shaft_speed
+    test = synthesize(SensorOptions.friction_test(seed), LiftProfile.friction_test())
+    signals = prepare_signals(test.record, speed, cylinder=test.cylinder)
+    friction = identify_friction(signals, test.cylinder).fit
     recording = synthesize(SensorOptions(seed=seed), LiftProfile())
-    signals = prepare_signals(
-        recording.record, default_loader().pump.shaft_speed, cylinder=recording.cylinder
-    )
-    friction = identify_friction(signals, recording.cylinder).fit
+    signals = prepare_signals(recording.record, speed, cylinder=recording.cylinder)
     leakage = identify_leakage(signals, recording.cylinder)
     header = ["coefficient", "unit", "identified", "95 % interval", "paper"]
     table4: Rows = [header]

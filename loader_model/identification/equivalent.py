@@ -34,12 +34,13 @@ J_D ψ̈ = h F − M_g(ψ) and ẍ = h ψ̈ + h' ψ̇², so the cylinder force t
     \qquad F_L(\psi) = \frac{M_g(\psi)}{h(\psi)}, \quad m_{eq}(\psi) = \frac{J_D}{h(\psi)^2}.
 
 What remains approximate is the chassis: it is taken at rest, while on the machine it moves on
-its tyres (pitch and heave under the boom's reaction).
+its tyres (pitch and heave under the boom's reaction). Records with the chassis sensors use
+:mod:`.chassis` instead, which is exact.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -80,6 +81,9 @@ class EquivalentCylinder:
         g m (G − D) of the boom with empty bucket (N·m, both components at φ0) and of one kg of
         bucket load (N·m/kg): the gravity moment about D at a boom angle is the x component of
         this vector turned by ψ = φ − φ0.
+    parameters : (LoaderParameters, BucketLoad) or None
+        The files it was built from (:meth:`from_parameters`), for the moving-chassis load
+        model of :mod:`.chassis`.
     """
 
     area_m2: float
@@ -95,6 +99,9 @@ class EquivalentCylinder:
     kinematics: tuple[float, ...] = ()
     gravity_moment: tuple[float, float] = (0.0, 0.0)
     gravity_moment_per_kg: tuple[float, float] = (0.0, 0.0)
+    parameters: tuple[LoaderParameters, BucketLoad] | None = field(
+        default=None, compare=False, repr=False
+    )
 
     @classmethod
     def from_parameters(cls, loader: LoaderParameters, load: BucketLoad) -> EquivalentCylinder:
@@ -133,6 +140,7 @@ class EquivalentCylinder:
                 float(load_vector[0] / load.mass),
                 float(load_vector[1] / load.mass),
             ),
+            parameters=(loader, load),
         )
 
     def load_force(
@@ -176,6 +184,10 @@ class EquivalentCylinder:
         _, lever, slope = self._lever(position_m)
         mass = self.inertia(load_mass_kg, position_m)
         return mass * (acceleration_m_s2 - slope / lever**2 * np.asarray(velocity_m_s) ** 2)
+
+    def boom_turn(self, position_m: np.ndarray) -> np.ndarray:
+        """Boom turn ψ = φ − φ0 in rad at piston positions in m (closed form, module docstring)."""
+        return self._lever(position_m)[0]
 
     def _lever(self, position_m: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         """Boom turn ψ from the operating angle, lever h(ψ) and dh/dψ at piston positions."""

@@ -19,6 +19,10 @@ takes the sign of the velocity with the same tanh as the Stribeck part,
 v = ẋ_act the extension rate in m/s (positive extending), p_A the piston-side gauge pressure in
 Pa. Printed literally, f_C p_A would be a force of the same sign whatever the motion.
 
+The law is not written again here: it is the plant's
+:func:`loader_model.plant.components.seal_friction`, evaluated through a CasADi Function with
+its gradient by automatic differentiation, so estimator and plant share one model.
+
 For fixed (τ_s, γ) the model is linear in (f_s, f_C, f_v): the estimator projects those out
 (variable projection, Golub and Pereyra 1973), searches (log τ_s, log γ) first on a grid then by
 ``scipy.optimize.least_squares`` on the projected residual, and polishes all five coefficients
@@ -30,7 +34,9 @@ lags for the filter-correlated residuals).
 from __future__ import annotations
 
 from collections.abc import Callable
+from functools import cache, lru_cache
 
+import casadi as ca
 import numpy as np
 from scipy.optimize import least_squares
 
@@ -73,31 +79,55 @@ def _thin(smooth: Smoother, step: int) -> Smoother:
     return lambda columns: smooth(columns)[::step]
 
 
+@cache
+def _law() -> ca.Function:
+    """The plant's friction law and its gradient in the coefficients, one sample (SX)."""
+    from loader_model.plant.components import seal_friction
+
+    c = ca.SX.sym("c", 5)  # FRICTION_NAMES order
+    v, p_a = ca.SX.sym("v"), ca.SX.sym("p_a")
+    force = seal_friction(c[0], c[1], c[2], c[3], c[4], p_a, v)
+    return ca.Function("seal_friction_law", [c, v, p_a], [force, ca.gradient(force, c)])
+
+
+@lru_cache(maxsize=8)
+def _mapped(n: int) -> ca.Function:
+    """:func:`_law` over n samples, the coefficients shared (CasADi ``map``, serial)."""
+    return _law().map("seal_friction_law_map", "serial", n, [0], [])
+
+
+def _evaluate(coefficients: np.ndarray, v: np.ndarray, p_a: np.ndarray) -> list[np.ndarray]:
+    """(F_f (n,), gradient (5, n)) at n samples, through a buffer (no conversions)."""
+    v = np.ascontiguousarray(v, dtype=float).ravel()
+    p_a = np.ascontiguousarray(p_a, dtype=float).ravel()
+    c = np.ascontiguousarray(coefficients, dtype=float)
+    force, gradient = np.empty(v.size), np.empty((v.size, 5))  # (5, n) column-major
+    buffer, trigger = _mapped(v.size).buffer()
+    for i, array in enumerate((c, v, p_a)):
+        buffer.set_arg(i, memoryview(array))
+    for i, array in enumerate((force, gradient)):
+        buffer.set_res(i, memoryview(array))
+    trigger()
+    return [force, gradient.T]
+
+
 def _basis(v: np.ndarray, p_a: np.ndarray, tau_s: float, gamma: float) -> np.ndarray:
-    t = np.tanh(gamma * v)
-    return np.column_stack((np.exp(-tau_s * np.abs(v)) * t, p_a * t, v))
+    """Columns ∂F_f/∂(f_s, f_C, f_v): F_f is linear in them (exact for any coefficients)."""
+    gradient = _evaluate(np.array([1.0, tau_s, gamma, 1.0, 1.0]), v, p_a)[1]
+    return gradient[[0, 3, 4]].T
 
 
 def friction_force(coefficients: np.ndarray, v: np.ndarray, p_a: np.ndarray) -> np.ndarray:
-    """F_f of Eq. 46 (errata 10 reading) for coefficients in :data:`FRICTION_NAMES` order."""
-    f_s, tau_s, gamma, f_c, f_v = coefficients
-    return _basis(v, p_a, tau_s, gamma) @ np.array([f_s, f_c, f_v])
+    """F_f of Eq. 46 (errata 10 reading) for coefficients in :data:`FRICTION_NAMES` order.
+
+    Evaluates the plant's own law (:func:`loader_model.plant.components.seal_friction`).
+    """
+    return _evaluate(coefficients, v, p_a)[0]
 
 
 def friction_jacobian(coefficients: np.ndarray, v: np.ndarray, p_a: np.ndarray) -> np.ndarray:
-    """∂F_f/∂(f_s, τ_s, γ, f_C, f_v), shape (n, 5)."""
-    f_s, tau_s, gamma, f_c, _ = coefficients
-    t = np.tanh(gamma * v)
-    decay = np.exp(-tau_s * np.abs(v))
-    return np.column_stack(
-        (
-            decay * t,
-            -f_s * np.abs(v) * decay * t,
-            (f_s * decay + f_c * p_a) * v * (1.0 - t**2),
-            p_a * t,
-            v,
-        )
-    )
+    """∂F_f/∂(f_s, τ_s, γ, f_C, f_v) of the plant's law (CasADi AD), shape (n, 5)."""
+    return _evaluate(coefficients, v, p_a)[1].T
 
 
 Smoother = Callable[[np.ndarray], np.ndarray]

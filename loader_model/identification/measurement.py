@@ -21,7 +21,17 @@ Q_A        m^3/s, L/min (÷ 60000)           pump flow to the piston sides (both
 V_p        m^3/rev, cm^3/rev (× 1e-6)       pump displacement; Q_A = V_p n with the shaft speed
                                             n of the parameter file's ``[pump]``
 m_load     kg                               bucket-load mass (known, as in the paper)
+theta_1    rad, deg (× π/180)               optional: chassis pitch from level, nose up positive
+f_Hx       m/s^2, g (× 9.80665)             optional: specific force at H along the chassis x
+f_Hy       m/s^2, g                         optional: specific force at H along the chassis y
+f_Ny       m/s^2, g                         optional: specific force at N along the chassis y
 ========== ================================ =====================================================
+
+The four chassis columns (section 3.3: triaxial accelerometer at H, vertical one at N, pitch)
+come together or not at all; an accelerometer reads f = Rᵀ(a + g ŷ), so a chassis at rest
+pitched by θ1 reads f_Hx = g sin θ1, f_Hy = g cos θ1. With them, the friction identification
+takes the chassis motion into account (:mod:`.chassis`); without them it takes the chassis at
+rest, which leaves kilonewtons of error on a machine on tyres (README).
 
 Each header cell is ``name [unit]``. Other columns are allowed and ignored. Every error names
 the column, the file line and the value.
@@ -40,6 +50,7 @@ import numpy as np
 from loader_model.export import write_atomically
 
 __all__ = [
+    "CHASSIS_COLUMNS",
     "COLUMN_UNITS",
     "MIN_ROWS",
     "TIME_JITTER_TOLERANCE",
@@ -48,6 +59,8 @@ __all__ = [
     "write_measurement_csv",
 ]
 
+#: Standard gravity [m/s²], the unit ``g`` of the specific-force columns.
+STANDARD_GRAVITY = 9.80665
 #: Column name -> accepted unit -> factor to SI.
 COLUMN_UNITS: dict[str, dict[str, float]] = {
     "time": {"s": 1.0},
@@ -58,7 +71,13 @@ COLUMN_UNITS: dict[str, dict[str, float]] = {
     "Q_A": {"m^3/s": 1.0, "L/min": 1.0 / 60000.0},
     "V_p": {"m^3/rev": 1.0, "cm^3/rev": 1e-6},
     "m_load": {"kg": 1.0},
+    "theta_1": {"rad": 1.0, "deg": np.pi / 180.0},
+    "f_Hx": {"m/s^2": 1.0, "g": STANDARD_GRAVITY},
+    "f_Hy": {"m/s^2": 1.0, "g": STANDARD_GRAVITY},
+    "f_Ny": {"m/s^2": 1.0, "g": STANDARD_GRAVITY},
 }
+#: Optional chassis columns, all or none (pitch, then the specific forces).
+CHASSIS_COLUMNS = ("theta_1", "f_Hx", "f_Hy", "f_Ny")
 _REQUIRED = ("time", "p_A", "p_B", "m_load")
 _EITHER = (("x_cyl", "phi"), ("Q_A", "V_p"))
 #: Fewest data rows accepted (the derivative window needs more for a useful fit anyway).
@@ -83,6 +102,13 @@ class MeasurementRecord:
     flow_m3_s: np.ndarray | None = None
     displacement_m3_rev: np.ndarray | None = None
     boom_angle_rad: np.ndarray | None = None
+    pitch_rad: np.ndarray | None = None
+    specific_force_m_s2: np.ndarray | None = None
+
+    @property
+    def has_chassis(self) -> bool:
+        """True if the record has the chassis pitch and specific forces (shape (n, 3))."""
+        return self.pitch_rad is not None and self.specific_force_m_s2 is not None
 
     @property
     def sample_rate_hz(self) -> float:
@@ -114,6 +140,10 @@ class MeasurementRecord:
         else:
             out["V_p [m^3/rev]"] = np.asarray(self.displacement_m3_rev)
         out["m_load [kg]"] = self.load_mass_kg
+        if self.has_chassis:
+            out["theta_1 [rad]"] = np.asarray(self.pitch_rad)
+            for k, name in enumerate(CHASSIS_COLUMNS[1:]):
+                out[f"{name} [m/s^2]"] = np.asarray(self.specific_force_m_s2)[:, k]
         return out
 
 
@@ -143,6 +173,13 @@ def _parse_header(cells: list[str], origin: str) -> dict[str, tuple[int, float]]
             missing.append(f"{first} (or {second})")
         if first in found and second in found:
             raise ValueError(f"{origin}: give either column {first!r} or {second!r}, not both")
+    given = [name for name in CHASSIS_COLUMNS if name in found]
+    if given and len(given) < len(CHASSIS_COLUMNS):
+        raise ValueError(
+            f"{origin}: chassis columns {given} given without "
+            f"{[n for n in CHASSIS_COLUMNS if n not in found]}; give all of "
+            f"{list(CHASSIS_COLUMNS)} (pitch and the three specific forces) or none"
+        )
     if missing:
         raise ValueError(
             f"{origin}: missing column(s) {missing}; the header has {[c.strip() for c in cells]}"
@@ -232,6 +269,10 @@ def read_measurement_csv(path: str | Path) -> MeasurementRecord:
         flow_m3_s=data.get("Q_A"),
         displacement_m3_rev=data.get("V_p"),
         boom_angle_rad=data.get("phi"),
+        pitch_rad=data.get("theta_1"),
+        specific_force_m_s2=(
+            np.column_stack([data[n] for n in CHASSIS_COLUMNS[1:]]) if "f_Hx" in data else None
+        ),
     )
 
 

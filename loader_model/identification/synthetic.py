@@ -19,19 +19,17 @@ static command (the pump holding the boom against the leakage), so the run start
 the plant's static equilibrium (:func:`~loader_model.plant.equilibrium.static_state`).
 
 The reference: a smooth trapezoidal velocity profile (raised-cosine ramps) of extend and retract
-strokes from the carry position (the plant's static piston position) with random speeds, ramps
-and heights; the bucket load changes, over a smooth ramp, only while the boom is held at the
-bottom. Each load mass m is its own plant parameter vector (bucket load of mass m with the
+strokes (:func:`~.lift_test.reference_schedule`); the bucket load changes only while the boom
+is held at the bottom. Each load mass m is its own plant parameter vector (bucket load of mass m with the
 centre of gravity and the inertia per kg of a load case, combined with the boom by
 :func:`~loader_model.parameters.combine_bodies`), passed per sample interval.
 
-Integration: CasADi ``cvodes`` on the sample grid, references and parameters piecewise constant
-over each sample interval. The recorded flow is the plant's ``Q_pump`` output (n V_p); p_A, p_B
-are gauge pressures. The true ẋ and ẍ come from the generated ``cylinder_kinematics`` and its
-directional derivative along the plant's ẋ.
+Integration: CasADi ``cvodes`` on the sample grid, inputs piecewise constant. Recorded flow:
+the plant's ``Q_pump`` (n V_p); p_A, p_B gauge. True ẋ and ẍ: the generated
+``cylinder_kinematics`` and its directional derivative along the plant's ẋ.
 
-Sensors: Gaussian noise, quantisation step and offset per channel; drop-outs of the flow
-estimate (reads 0) on a fraction of samples (outliers); the flow offset defaults to Table 5's C.
+Sensors: noise, quantisation and offset per channel, flow drop-outs (outliers); the flow
+offset defaults to Table 5's C; chassis channels (pitch, specific forces) drawn last.
 """
 
 from __future__ import annotations
@@ -45,96 +43,19 @@ import numpy as np
 
 import loader_model_generated as generated
 from loader_model.identification.equivalent import EquivalentCylinder
+from loader_model.identification.lift_test import (
+    TABLE4,
+    TABLE5,
+    LiftProfile,
+    SensorOptions,
+    reference_schedule,
+)
 from loader_model.identification.measurement import MeasurementRecord
 from loader_model.parameter_schema import BucketLoad, LoaderParameters
 
-__all__ = [
-    "TABLE4",
-    "TABLE5",
-    "LiftProfile",
-    "SensorOptions",
-    "SyntheticRecording",
-    "synthesize",
-]
-
-#: Table 4 in SI units, errata 10 reading (f_C 10.7 N/bar = 1.07e-4 N/Pa).
-TABLE4 = {"f_s": 17.0e3, "tau_s": 40.0, "gamma": 5.7, "f_c": 1.07e-4, "f_v": 8.13e3}
-#: Table 5 in SI units: C [m³/s], K_oil [Pa], k_Lp [m³/(s·Pa)], k_Lv [m²].
-TABLE5 = {"C": -3.2e-4, "K_oil": 1.64e9, "k_Lp": 2.87e-11, "k_Lv": -5.0e-4}
+__all__ = ["TABLE4", "TABLE5", "LiftProfile", "SensorOptions", "SyntheticRecording", "synthesize"]
 
 _N_MECH = len(generated.PARAMETER_NAMES)
-
-
-@dataclass(frozen=True)
-class SensorOptions:
-    """Sensor model of the synthetic record (each channel: true + offset + noise, quantised).
-
-    Attributes
-    ----------
-    sample_rate_hz : float
-        Logging rate in Hz (also the integration grid).
-    pressure_noise_pa, position_noise_m, flow_noise_m3_s : float
-        Standard deviations of white Gaussian noise.
-    pressure_step_pa, position_step_m, flow_step_m3_s : float
-        Quantisation steps (0: none).
-    pressure_offset_pa, position_offset_m : float
-        Constant offsets of p_A and p_B, and of x_cyl.
-    flow_offset_m3_s : float
-        Offset of the pump-flow estimate; Table 5's C by default.
-    outlier_fraction : float
-        Fraction of flow samples that drop out to 0 (sensor drop-outs).
-    seed : int
-        Seed of ``numpy.random.default_rng`` (noise, outliers and the test profile).
-    """
-
-    sample_rate_hz: float = 500.0
-    pressure_noise_pa: float = 0.5e5
-    position_noise_m: float = 5e-5
-    flow_noise_m3_s: float = 1.0e-4
-    pressure_step_pa: float = 0.1e5
-    position_step_m: float = 1e-5
-    flow_step_m3_s: float = 1e-6
-    pressure_offset_pa: float = 0.0
-    position_offset_m: float = 0.0
-    flow_offset_m3_s: float = TABLE5["C"]
-    outlier_fraction: float = 0.0
-    seed: int = 0
-
-
-@dataclass(frozen=True)
-class LiftProfile:
-    """The lift test: cycles of extend, hold, retract, hold with random rates and loads.
-
-    Attributes
-    ----------
-    cycles : int
-        Number of extend-retract cycles.
-    speed_range_m_s : (float, float)
-        Range of the cylinder speeds, drawn per stroke, in m/s.
-    ramp_range_s : (float, float)
-        Range of the speed ramp durations (raised cosine) in s.
-    position_range_m : (float, float)
-        Bottom and highest top of the strokes, piston position in m; each top is drawn in the
-        upper half. The run starts at the plant's static position and moves to the bottom
-        during the first hold.
-    hold_s : float
-        Hold between strokes in s (loads change during the hold at the bottom).
-    load_masses_kg : tuple of float
-        Bucket loads drawn per cycle, in kg (> 0; the paper: 340 kg and 770 kg).
-    position_gain : float
-        k_x of the position law in 1/s.
-    integral_gain : float
-        k_i of the position law in 1/s².
-    """
-
-    cycles: int = 12
-    speed_range_m_s: tuple[float, float] = (0.02, 0.15)
-    ramp_range_s: tuple[float, float] = (0.4, 1.0)
-    position_range_m: tuple[float, float] = (0.03, 0.28)
-    hold_s: float = 1.5
-    load_masses_kg: tuple[float, ...] = (340.0, 555.0, 770.0)
-    position_gain: float = 8.0
-    integral_gain: float = 8.0
 
 
 @dataclass(frozen=True)
@@ -147,9 +68,9 @@ class SyntheticRecording:
         What the sensors logged (write it with ``write_measurement_csv(path, record.columns())``).
     truth : dict of str to numpy.ndarray
         True ``x``, ``v``, ``a`` (ẍ), ``p_a``, ``p_b``, ``dp_a`` (ṗ_A), ``flow`` (Q_pump),
-        ``force`` (F_act), ``phi`` (boom angle from the static one), ``theta_1`` and
-        ``thetadd_1`` (chassis pitch and its acceleration), ``command`` (V_p,ref) and
-        ``load_mass`` at the
+        ``force`` (F_act), ``phi`` (boom angle from the static one), ``theta_1``,
+        ``thetad_1``, ``thetadd_1`` (chassis pitch, its rate and acceleration), ``f_Hx``,
+        ``f_Hy``, ``f_Ny`` (specific forces), ``command`` (V_p,ref) and ``load_mass`` at the
         sample times, from the plant's state and right-hand side; ``outliers`` (1: dropped).
     cylinder : EquivalentCylinder
         The equivalent cylinder of the loader and load case (what an estimator would use).
@@ -162,47 +83,6 @@ class SyntheticRecording:
     truth: dict[str, np.ndarray]
     cylinder: EquivalentCylinder
     parameters: dict[str, float] = field(default_factory=dict)
-
-
-def _raised_cosine_ramp(t: np.ndarray, start: float, duration: float) -> np.ndarray:
-    u = np.clip((t - start) / duration, 0.0, 1.0)
-    return 0.5 - 0.5 * np.cos(np.pi * u)
-
-
-def _schedule(
-    profile: LiftProfile, rng: np.random.Generator, dt: float, x_start: float
-) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Reference on the sample grid: time, v_ref, x_ref and load mass."""
-    low, high = profile.position_range_m
-    pieces: list[tuple[float, float, float]] = []  # (speed, ramp, distance) per stroke
-    loads = rng.choice(profile.load_masses_kg, size=profile.cycles)
-    for _ in range(profile.cycles):
-        top = rng.uniform(low + 0.5 * (high - low), high)
-        for direction in (1.0, -1.0):
-            speed = rng.uniform(*profile.speed_range_m_s)
-            ramp = rng.uniform(*profile.ramp_range_s)
-            pieces.append((direction * speed, ramp, top - low))
-    durations = [abs(d / s) + r for s, r, d in pieces]  # ramps: half the ramp lost each end
-    total = profile.hold_s + sum(durations) + profile.hold_s * len(pieces)
-    t = np.arange(0.0, total + dt, dt)
-    v_ref = np.zeros_like(t)
-    mass = np.full_like(t, loads[0])
-    start = profile.hold_s
-    for k, ((speed, ramp, _), duration) in enumerate(zip(pieces, durations, strict=True)):
-        v_ref += speed * (
-            _raised_cosine_ramp(t, start, ramp)
-            - _raised_cosine_ramp(t, start + duration - ramp, ramp)
-        )
-        start += duration + profile.hold_s
-        cycle = (k + 1) // 2
-        if k % 2 == 1 and cycle < profile.cycles:  # at the bottom: change the load
-            step = loads[cycle] - loads[cycle - 1]
-            mass += step * _raised_cosine_ramp(t, start - profile.hold_s, 0.8 * profile.hold_s)
-    # from the static position to the bottom during the first hold
-    approach = (x_start - low) * (1.0 - _raised_cosine_ramp(t, 0.0, 0.8 * profile.hold_s))
-    v_approach = np.gradient(approach, dt)
-    x_ref = low + np.concatenate(([0.0], np.cumsum(0.5 * (v_ref[1:] + v_ref[:-1]) * dt)))
-    return t, v_ref + v_approach, x_ref + approach, mass
 
 
 @cache
@@ -250,6 +130,10 @@ def _lift_functions() -> tuple[ca.Function, ca.Function]:
                 x[STATE_NAMES.index("theta_1")],
                 y[out["thetadd_1"]],
                 command,
+                y[out["thetad_1"]],
+                y[out["f_Hx"]],
+                y[out["f_Hy"]],
+                y[out["f_Ny"]],
             )
         ],
         ["x", "u"],
@@ -271,6 +155,10 @@ _TRUTH_NAMES = (
     "theta_1",
     "thetadd_1",
     "command",
+    "thetad_1",
+    "f_Hx",
+    "f_Hy",
+    "f_Ny",
 )
 
 
@@ -282,7 +170,7 @@ def _load_case(load: BucketLoad, mass: float) -> BucketLoad:
 def _parameter_columns(
     loader: LoaderParameters, load: BucketLoad, masses: np.ndarray
 ) -> np.ndarray:
-    """Plant parameter vectors, one column per sample (distinct masses computed once)."""
+    """Plant parameter vectors, one column per sample (each distinct mass once)."""
     from loader_model.plant.plant_parameters import plant_parameter_vector
 
     unique, index = np.unique(masses, return_inverse=True)
@@ -336,7 +224,7 @@ def synthesize(
     cyl = EquivalentCylinder.from_parameters(loader, load)
     # p = 0 (the static state) is the operating boom angle whatever the load
     x_static = float(cyl.position_from_boom_angle(np.array([loader.geometry.boom_angle]))[0])
-    t, v_ref, x_ref, mass = _schedule(profile, rng, dt, x_static)
+    t, v_ref, x_ref, mass = reference_schedule(profile, rng, dt, x_static)
     params = _parameter_columns(loader, load, mass)
     x0, u0 = static_state(params[:, 0])
     n_pump = loader.pump.shaft_speed
@@ -381,6 +269,15 @@ def synthesize(
         load_mass_kg=mass.copy(),
         flow_m3_s=flow,
     )
+    if o.chassis:  # drawn after the other channels: their noise does not change with them
+        accel = (o.acceleration_noise_m_s2, o.acceleration_step_m_s2, 0.0)
+        record = dataclasses.replace(
+            record,
+            pitch_rad=sense(truth["theta_1"], o.pitch_noise_rad, 0.0, 0.0),
+            specific_force_m_s2=np.column_stack(
+                [sense(truth[name], *accel) for name in ("f_Hx", "f_Hy", "f_Ny")]
+            ),
+        )
     truth["outliers"] = outliers.astype(float)
     fr, lk = loader.friction, loader.leakage
     parameters = {
