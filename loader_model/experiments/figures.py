@@ -102,7 +102,7 @@ def plot_fig14(path: Path, outcomes: Sequence[TrialOutcome]) -> Path:
     """Fig. 14: mean a_total with 95 % intervals per speed/load condition and controller."""
     plt = _pyplot()
     conditions = sorted({(o.spec.speed_kmh, o.spec.load) for o in outcomes})
-    figure, axis = plt.subplots(figsize=(8.0, 4.2))
+    figure, axis = plt.subplots(figsize=(8.0, 4.8))
     present = {o.spec.controller for o in outcomes}
     controllers = [c for c in (*CONTROLLERS, *DESIGNED_CONTROLLERS) if c in present]
     width = 0.8 / len(controllers)
@@ -132,7 +132,7 @@ def plot_fig14(path: Path, outcomes: Sequence[TrialOutcome]) -> Path:
     axis.set_ylabel("a_total (Eq. 50) [m/s²]")
     axis.set_title("Fig. 14 (model): mean a_total, error bars 95 % confidence intervals")
     axis.grid(True, axis="y", alpha=0.3)
-    axis.legend(fontsize=8)
+    axis.legend(fontsize=8, ncol=4, loc="upper center", bbox_to_anchor=(0.5, -0.2))
     figure.tight_layout()
     figure.savefig(path, dpi=110)
     plt.close(figure)
