@@ -14,7 +14,7 @@ Where the equations come from (the same equations, none written a second time):
   the outputs, as the generated code does), the anchor rates, the specific forces and tyre
   forces (outputs), and the static tyre loads that complete the parameter vector.
 - Hydraulic part (cylinders, pump, valves, accumulator): the runtime has it only as CasADi
-  (:mod:`loader_model.plant.components` composed by ``loader_model.plant.plant._drive``), with
+  (:mod:`loader_model.plant.components` composed by ``loader_model.plant.plant.hydraulic_drive``), with
   ``ca.if_else``/``ca.fmax`` etc. that SymPy symbols cannot go through. Its SX graph is translated
   mechanically into SymPy, one instruction at a time (:func:`sx_to_sympy`): the same operations
   in the same order, no equation retyped. Piecewise results and results the graph shares are
@@ -380,7 +380,7 @@ def _hydraulic_function(jacobian: bool = False) -> ca.Function:
     params = ca.SX.sym("params", len(PLANT_PARAMETER_NAMES))
     n_mechanical = len(generated.PARAMETER_NAMES)
     completed, _ = generated.function("complete_parameters")(params[:n_mechanical])
-    drive = plant._drive(x, u, plant._named(params), completed)
+    drive = plant.hydraulic_drive(x, u, plant.named_parameters(params), completed)
     names = ("force", "position", "pump_flow", "p_acc", "rates")
     if jacobian:
         d_drive = ca.jacobian(ca.vertcat(drive["force"], drive["rates"]), x)
