@@ -29,9 +29,10 @@ def test_reproduce_writes_a_complete_report(tmp_path: Path, capsys) -> None:
         "skyhook",
         "skyhook-lqr",
         "skyhook-optimised",
+        "skyhook-refined",
     ]
     designed = (target / "designed.csv").read_text().strip().splitlines()
     assert len(designed) == 5 and "Beyond the paper" in text
     trials = (target / "trials.csv").read_text().strip().splitlines()
-    assert len(trials) == 1 + 2 * 2 * 6 * 2
+    assert len(trials) == 1 + 2 * 2 * 7 * 2  # 4 controllers of the paper + 3 designed
     assert "within 10 percentage points" in capsys.readouterr().out
