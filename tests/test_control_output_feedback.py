@@ -51,8 +51,8 @@ def test_random_systems_satisfy_eq42_with_monotone_cost(seed: int) -> None:
     result = output_feedback_lqr((a, b, c), q, r, x0)
     assert result.converged
     assert max(result.residuals) <= 1e-12
-    # Monotone up to the line search's rounding allowance of 1e-14 |J|.
-    assert np.all(np.diff(result.cost_history) <= 1e-14 * result.cost)
+    # Monotone up to the rounding allowance of the Newton polish (DECREMENT_RTOL |J|, 1e-11).
+    assert np.all(np.diff(result.cost_history) <= 1e-11 * result.cost)
     assert np.max(result.poles.real) < 0.0
     # Independent check: scipy's P and cost, and P, S satisfy Eq. 42 as recomputed here.
     k = result.gain

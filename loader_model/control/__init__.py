@@ -1,5 +1,6 @@
 """Controllers (paper section 3): settings, sensors, the 1 kHz controllers and their linear
-equivalents, output-feedback LQR and CasADi H2 gain optimisation.
+equivalents, output-feedback LQR and the H2 / ISO 2631 gain optimisation (certified BFGS or IPOPT through
+CasADi, :func:`~loader_model.control.comfort_design.optimise_gain`).
 
 The algorithms are generic in the plant: they take numpy matrices or python-control systems.
 """
@@ -11,7 +12,6 @@ from loader_model.control.controllers import (
 )
 from loader_model.control.design_plant import DesignPlant
 from loader_model.control.h2_cost import h2_cost_function, h2_costs
-from loader_model.control.h2_design import H2DesignError, H2DesignResult, design_h2_gain
 from loader_model.control.linear_controller import LinearController, closed_loop, linear_controller
 from loader_model.control.output_feedback import (
     NoStabilisingGainError,
@@ -34,8 +34,6 @@ __all__ = [
     "SETTINGS_NAMES",
     "ControllerSettings",
     "DesignPlant",
-    "H2DesignError",
-    "H2DesignResult",
     "LinearController",
     "NoStabilisingGainError",
     "OutputFeedbackResult",
@@ -44,7 +42,6 @@ __all__ = [
     "controller_function",
     "controller_state_names",
     "default_settings",
-    "design_h2_gain",
     "h2_cost_function",
     "h2_costs",
     "linear_controller",

@@ -25,6 +25,7 @@ from typing import Any
 
 import numpy as np
 
+from loader_model.control._checks import finite_matrix, gain_mask, symmetric_matrix
 from loader_model.control.comfort_plant import (
     FIXED_STATES,
     MEASURED,
@@ -33,7 +34,11 @@ from loader_model.control.comfort_plant import (
     comfort_system,
 )
 from loader_model.control.design_plant import DesignPlant
-from loader_model.control.feasible_descent import balanced_plant, minimise_certified
+from loader_model.control.feasible_descent import (
+    balanced_plant,
+    minimise_certified,
+    reach_margin,
+)
 from loader_model.control.h2_cost import closed_loop, h2_costs
 
 __all__ = [
@@ -153,23 +158,60 @@ def optimise_gain(
     margin: float = DEFAULT_MARGIN,
     max_iterations: int = 200,
     solver: str = "bfgs",
+    mask: Any = None,
+    effort: Any = None,
 ) -> dict[str, Any]:
-    """Minimise Σ a_total² over ``plants`` with margin σ and the r.m.s. limits.
+    """Minimise Σ w_i J_i (a_total² on the comfort plants) with margin σ and the r.m.s. limits.
 
-    ``gain0`` (default Table 3) is first moved to margin 1.5 σ + 0.01 by the phase 1 of
-    :func:`~loader_model.control.h2_design.design_h2_gain` if it misses it, then the r.m.s.
-    limits are checked (ValueError if the start violates them). ``solver``: ``"bfgs"``
-    (:func:`~loader_model.control.feasible_descent.minimise_certified`, the default) or
-    ``"ipopt"`` (:func:`~loader_model.control.comfort_ipopt.minimise_ipopt`, IPOPT through
-    CasADi on the same Φ). Returns that function's dict plus ``start`` and ``solver``.
+    The one entry point of the gain design: the start is moved into the σ-stable set if it
+    misses it, then the certified descent or IPOPT minimises the H2 cost of
+    :mod:`~loader_model.control.h2_cost` from its adjoint gradient.
+
+    Parameters
+    ----------
+    plants : sequence of DesignPlant
+        Design plants sharing the gain shape (m, p), e.g. :func:`comfort_plants`.
+    gain0 : array_like, optional
+        Start gain (m x p); default Table 3 (1 x 4). First moved to margin 1.5 σ + 0.01 by
+        :func:`~loader_model.control.feasible_descent.reach_margin` if it misses it.
+    margin : float
+        σ ≥ 0 in rad/s: every pole of every closed loop left of −σ at every iterate.
+    max_iterations : int
+        Iteration limit of the solver.
+    solver : {"bfgs", "ipopt"}
+        ``"bfgs"``: :func:`~loader_model.control.feasible_descent.minimise_certified` (the
+        default); ``"ipopt"``: :func:`~loader_model.control.comfort_ipopt.minimise_ipopt`,
+        IPOPT through CasADi on the same Φ.
+    mask : array_like of bool, optional
+        m x p, True where a gain entry is free (default all); fixed entries keep gain0's value.
+    effort : array_like, optional
+        Effort weight R (m x m, ⪰ 0) of tr(R K C_y P C_yᵀ Kᵀ) in J (default 0).
+
+    Returns
+    -------
+    dict
+        The solver's dict (``gain``, ``cost``, ``iterations``, ``history``, ``converged``,
+        ``status``, ``time_s``, ...) plus ``start`` and ``solver``.
+
+    Raises
+    ------
+    ValueError
+        For an unknown solver, malformed gain, mask or effort, a negative margin, a start that
+        cannot be moved to the margin, or a start outside an r.m.s. limit.
     """
-    from loader_model.control.h2_design import _reach_margin
-
     if solver not in ("bfgs", "ipopt"):
         raise ValueError(f"solver {solver!r}: allowed: 'bfgs' or 'ipopt'")
-    start = TABLE3_GAIN if gain0 is None else np.atleast_2d(np.asarray(gain0, dtype=float))
-    mask = np.ones(start.shape, dtype=bool)
-    start, failure = _reach_margin(plants, start, mask, 1.5 * margin + 0.01)
+    if not (np.isfinite(margin) and margin >= 0.0):
+        raise ValueError(f"margin must be finite and >= 0; got {margin}")
+    shape = plants[0].gain_shape
+    start = finite_matrix("gain0", TABLE3_GAIN if gain0 is None else gain0, shape)
+    mask = gain_mask(mask, shape)
+    r = (
+        np.zeros((shape[0],) * 2)
+        if effort is None
+        else symmetric_matrix("effort", effort, shape[0], definite=False)
+    )
+    start, failure = reach_margin(plants, start, mask, 1.5 * margin + 0.01)
     if failure is not None:
         raise ValueError(
             f"no start gain meets the margin {margin} rad/s: {failure['return_status']}"
@@ -181,11 +223,6 @@ def optimise_gain(
     else:
         minimise = minimise_certified
     result = minimise(
-        plants,
-        start,
-        mask=mask,
-        effort=np.zeros((1, 1)),
-        margin=margin,
-        max_iterations=max_iterations,
+        plants, start, mask=mask, effort=r, margin=margin, max_iterations=max_iterations
     )
     return {**result, "start": start, "solver": solver}

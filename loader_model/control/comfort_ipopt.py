@@ -14,8 +14,8 @@ Lyapunov solutions inside); its exact gradient, from the adjoint Lyapunov equati
 (:func:`~loader_model.control.feasible_descent.cost_and_gradient`), is the Callback's Jacobian
 (``has_jacobian`` / ``get_jacobian``); value and gradient are computed together and cached per k.
 IPOPT runs with ``hessian_approximation = limited-memory`` (L-BFGS, 20 pairs kept); the unknowns
-are 4 numbers, not the 2 964 Gramian and certificate entries of
-:func:`~loader_model.control.h2_design.design_h2_gain`.
+are 4 numbers, not the 2 964 Gramian and certificate entries of the retired Gramian design
+(:mod:`~loader_model.control.feasible_descent` says why it was retired).
 
 Stability during the solve: outside :math:`\mathcal{S}_\sigma` (or outside an r.m.s. limit) the
 Callback returns Φ = +inf. CasADi's NLP oracle reports a non-finite output as a failed

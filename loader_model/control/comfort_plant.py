@@ -15,7 +15,7 @@ estimate; (φ − φ0)/‖φ‖). So the command's Jacobian at gain K is C(K) = 
 with c_i the row of ŷ_i, and ŷ_i is read off the same Function: c_i = (C(0) − C(e_i)) / (k_p V_p,max)
 (exact: the law is linear in K). The design plant's control input is r (``p_ref_n``), entering
 V_p,ref with gain k_p V_p,max; its measured outputs are ŷ (``yh_x``, ``yh_y``, ``yh_theta``,
-``yh_phi``); then u = −K y of :func:`~loader_model.control.h2_design.design_h2_gain` is exactly
+``yh_phi``); then u = −K y of :func:`~loader_model.control.comfort_design.optimise_gain` is exactly
 r = −K_fb ŷ and K is K_fb.
 
 Performance outputs (Eq. 49, 50): the seat accelerometer's specific force and the pitch

@@ -1,10 +1,10 @@
-r"""Static-gain H2 optimisation for large design plants: BFGS in the gains, every iterate certified.
+r"""Static-gain H2 optimisation: BFGS in the gains, every iterate certified.
 
-:func:`~loader_model.control.h2_design.design_h2_gain` carries the Gramian and a stability
-certificate as NLP unknowns: n(n+1) unknowns per plant with dense Jacobians. That fits the
-13-state test plant; on the 38-state ride-comfort plant (two loads: 2 964 unknowns, a dense KKT
-system) it had not finished after 13 minutes of wall time (2 shared CPUs), and the Cholesky warm
-start of its Gramian failed with the single road input (P numerically singular). Here the only
+An earlier design (``design_h2_gain``, retired) carried the Gramian and a stability certificate
+as IPOPT unknowns: n(n+1) unknowns per plant with dense Jacobians. On the 38-state ride-comfort
+plant (two loads: 2 964 unknowns, a dense KKT system) it had not finished after 13 minutes of
+wall time (2 shared CPUs), and on the 13-state test plant its IPOPT runs ended in
+Maximum_Iterations_Exceeded on one OpenBLAS kernel and converged on another. Here the only
 unknowns are the free gains k:
 
 .. math::
@@ -22,8 +22,8 @@ the r.m.s. limits of every plant. Value and gradient by the adjoint Lyapunov equ
 and the same with C_e rows for each variance. Quasi-Newton (BFGS) steps with backtracking: a
 trial gain is accepted only if (1) every closed loop has all poles left of −σ (numpy
 eigenvalues), (2) every r.m.s. value is inside its limit, (3) Φ decreases (Armijo). So every
-iterate, and the result, meets the margin and the limits; the start must meet them too (phase 1
-of :func:`~loader_model.control.h2_design.design_h2_gain` moves it there). A local optimum.
+iterate, and the result, meets the margin and the limits; the start must meet them too
+(:func:`reach_margin` moves it there). A local optimum.
 :mod:`~loader_model.control.comfort_ipopt` minimises the same Φ with IPOPT through CasADi.
 """
 
@@ -35,11 +35,18 @@ from typing import Any
 
 import numpy as np
 from scipy.linalg import solve_continuous_lyapunov
+from scipy.optimize import minimize
 
 from loader_model.control.design_plant import DesignPlant
 from loader_model.control.h2_cost import closed_loop
 
-__all__ = ["BarrierObjective", "balanced_plant", "cost_and_gradient", "minimise_certified"]
+__all__ = [
+    "BarrierObjective",
+    "balanced_plant",
+    "cost_and_gradient",
+    "minimise_certified",
+    "reach_margin",
+]
 
 
 def balanced_plant(plant: DesignPlant) -> DesignPlant:
@@ -211,3 +218,80 @@ def minimise_certified(
         "status": status,
         "time_s": time.perf_counter() - started,
     }
+
+
+def _abscissa(plants: Sequence[DesignPlant], gain: np.ndarray) -> float:
+    return max(float(np.max(np.linalg.eigvals(closed_loop(p, gain)[0]).real)) for p in plants)
+
+
+class _Reached(Exception):
+    pass
+
+
+def reach_margin(
+    plants: Sequence[DesignPlant],
+    gain0: np.ndarray,
+    mask: np.ndarray,
+    target: float,
+    max_evaluations: int = 4000,
+) -> tuple[np.ndarray, dict[str, Any] | None]:
+    """Phase 1 of a design: ``gain0``, or a gain found by Nelder-Mead with max Re λ ≤ −target.
+
+    The certified descents (:func:`minimise_certified`, and
+    :func:`~loader_model.control.comfort_ipopt.minimise_ipopt`) need a start inside the
+    σ-stable set; this moves a destabilising or too slow start there by minimising the largest
+    spectral abscissa over ``plants`` in the free entries (``mask``), with up to 3 restarts.
+
+    Parameters
+    ----------
+    plants : sequence of DesignPlant
+        The closed loops u = −K y that must all meet the margin.
+    gain0 : numpy.ndarray
+        Start gain (m x p); fixed entries keep their values.
+    mask : numpy.ndarray
+        Boolean m x p array, True where an entry is free.
+    target : float
+        Required margin in rad/s: max_i max Re λ(A_cl,i) ≤ −target.
+    max_evaluations : int
+        Limit on eigenvalue evaluations over the restarts.
+
+    Returns
+    -------
+    tuple
+        (gain, None) on success; (best gain, dict with ``return_status`` naming the failure)
+        otherwise.
+    """
+    if _abscissa(plants, gain0) <= -target:
+        return gain0, None
+    x0 = gain0[mask]
+
+    def objective(x: np.ndarray) -> float:
+        gain = gain0.copy()
+        gain[mask] = x
+        value = _abscissa(plants, gain)
+        if value <= -target:
+            raise _Reached(gain)
+        return value
+
+    step = np.maximum(0.5 * np.abs(x0), max(0.5 * float(np.mean(np.abs(x0))), 0.1))
+    simplex = np.vstack([x0, x0 + np.diag(step)])
+    try:
+        for _ in range(3):  # restarts from the best point with a fresh simplex
+            best = minimize(
+                objective,
+                simplex[0],
+                method="Nelder-Mead",
+                options={
+                    "initial_simplex": simplex,
+                    "maxfev": max_evaluations // 3,
+                    "xatol": 1e-10,
+                    "fatol": 1e-12,
+                },
+            )
+            simplex = np.vstack([best.x, best.x + np.diag(step)])
+    except _Reached as reached:
+        return reached.args[0], None
+    gain = gain0.copy()
+    gain[mask] = best.x
+    status = f"margin not reached in phase 1: max Re λ = {best.fun:.6g}, needed ≤ {-target:.6g}"
+    return gain, {"return_status": status, "iter_count": 0}

@@ -10,7 +10,8 @@ For design plants i (:class:`~loader_model.control.design_plant.DesignPlant`) an
 with :math:`A^{cl} = A - B_u K C_y`, :math:`C_z^{cl} = C_z - D_{zu} K C_y`: the squared H2 norm
 from the white noise w to z plus an effort penalty (the stochastic form of Eq. 41 with
 X0 = B_w B_wᵀ, Q = C_zᵀ C_z). :func:`h2_cost_function` exposes J(K) as a CasADi Function;
-:func:`loader_model.control.h2_design.design_h2_gain` minimises it with IPOPT.
+The gain designs (:func:`loader_model.control.comfort_design.optimise_gain`) minimise the
+same J from its adjoint gradient (:mod:`~loader_model.control.feasible_descent`).
 """
 
 from __future__ import annotations
