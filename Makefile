@@ -1,17 +1,32 @@
-# The README's two commands are `make reproduce` and `make test`; both bootstrap .venv from pyproject.toml.
+# The README's two commands are `make reproduce` and `make test`; both bootstrap .venv from
+# pyproject.toml with every version pinned by requirements-lock.txt (refreshed by `make lock`).
 PYTHON ?= python3
 VENV := .venv
 PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
+LOCK := requirements-lock.txt
+PIP_QUIET := --quiet --disable-pip-version-check
 
-.PHONY: setup regenerate calibrate gains lint test test-slow bench reproduce clean
+.PHONY: setup lock regenerate calibrate gains lint test test-slow bench reproduce clean
 
-$(STAMP): pyproject.toml
+$(STAMP): pyproject.toml $(LOCK)
 	$(PYTHON) -m venv $(VENV)
-	$(PY) -m pip install --quiet --disable-pip-version-check -e '.[derive,dev]'
+	$(PY) -m pip install $(PIP_QUIET) -c $(LOCK) -e '.[derive,dev]'
 	touch $(STAMP)
 
 setup: $(STAMP)
+
+## lock: resolve pyproject.toml afresh in a scratch venv and pin every package (transitive too)
+lock:
+	rm -rf .lock-venv
+	$(PYTHON) -m venv .lock-venv
+	.lock-venv/bin/python -m pip install $(PIP_QUIET) '.[derive,dev]'
+	{ echo "# Pinned set of every runtime, derive and test dependency, transitive ones included."; \
+	  echo "# Written by \`make lock\` (resolved from pyproject.toml with $$(.lock-venv/bin/python -V),"; \
+	  echo "# $$(uname -sm)); \`make setup\` installs with it as constraints. Do not edit by hand."; \
+	  .lock-venv/bin/python -m pip freeze --exclude-editable --exclude loader-model; } > $(LOCK).tmp
+	mv $(LOCK).tmp $(LOCK)
+	rm -rf .lock-venv build
 
 ## regenerate: derive the model with SymPy and rewrite generated/ (deterministic)
 regenerate: setup
@@ -48,4 +63,4 @@ reproduce: setup
 	$(VENV)/bin/loader-model reproduce
 
 clean:
-	rm -rf $(VENV) build dist *.egg-info .pytest_cache .ruff_cache
+	rm -rf $(VENV) .lock-venv build dist *.egg-info .pytest_cache .ruff_cache
