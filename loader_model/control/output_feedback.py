@@ -12,7 +12,6 @@ from typing import Any
 
 import numpy as np
 
-from loader_model.control import _sof_derivatives as eq42
 from loader_model.control._checks import (
     finite_matrix,
     gain_mask,
@@ -20,6 +19,7 @@ from loader_model.control._checks import (
     spectral_abscissa,
     symmetric_matrix,
 )
+from loader_model.control._sof_descent import descend
 
 __all__ = ["NoStabilisingGainError", "OutputFeedbackResult", "output_feedback_lqr"]
 
@@ -44,7 +44,7 @@ class OutputFeedbackResult:
     free entries); ``decrement`` is the decrease of J that the last Newton step predicted,
     ½ gᵀ H⁻¹ g / |J| (inf where no Newton step was taken); ``converged`` says that the
     stationarity residual is below ``rtol`` or that this decrement is at most
-    :data:`DECREMENT_RTOL`; ``cost_history`` starts with the cost of the stabilising initial gain.
+    ``DECREMENT_RTOL``; ``cost_history`` starts with the cost of the stabilising initial gain.
     """
 
     gain: np.ndarray
@@ -76,125 +76,6 @@ class OutputFeedbackResult:
         )
 
 
-#: Converged on the cost when the Newton decrement says that the decrease still to be had,
-#: ½ gᵀ H⁻¹ g, is below this multiple of |J|: J is evaluated from Lyapunov solutions whose
-#: relative round-off is about cond · ε (at the optimum of the 13-state loader design plant the
-#: cost came out 8e-13 apart, relative, on the Haswell, SkylakeX and Sandybridge kernels of
-#: OpenBLAS), so a smaller decrease cannot be resolved; the allowance has a margin of 10.
-DECREMENT_RTOL = 1e-11
-
-
-@dataclass(frozen=True)
-class _Descent:
-    gain: np.ndarray
-    p: np.ndarray
-    s: np.ndarray
-    residuals: tuple[float, float, float]
-    decrement: float
-    iterations: int
-    converged: bool
-
-
-def _direction(
-    b: np.ndarray,
-    c: np.ndarray,
-    k: np.ndarray,
-    r: np.ndarray,
-    p: np.ndarray,
-    s: np.ndarray,
-    solver: Any,
-    mask: np.ndarray,
-    g: np.ndarray,
-    newton: bool,
-) -> tuple[np.ndarray, bool]:
-    """Newton step where the exact Hessian is positive definite, else Moerder-Calise."""
-    free = mask.ravel(order="F")
-    if newton:
-        try:
-            hessian = eq42.hessian(b, c, k, r, p, s, solver, mask)
-            if np.all(np.linalg.eigvalsh(hessian) > 0):
-                return -np.linalg.solve(hessian, g), True
-        except np.linalg.LinAlgError:
-            pass
-    preconditioner = np.kron(c @ s @ c.T, r)[np.ix_(free, free)]
-    if np.linalg.cond(preconditioner) > 1e14:
-        raise np.linalg.LinAlgError("C S Cᵀ is singular: check that C has full row rank and X0 ≻ 0")
-    return -np.linalg.solve(preconditioner, g), False
-
-
-def _descent(
-    a: np.ndarray,
-    b: np.ndarray,
-    c: np.ndarray,
-    q: np.ndarray,
-    r: np.ndarray,
-    x0: np.ndarray,
-    k: np.ndarray,
-    mask: np.ndarray,
-    rtol: float,
-    max_iterations: int,
-    history: list[float],
-    newton: bool = True,
-) -> _Descent:
-    """Newton or Moerder-Calise steps with Armijo backtracking (monotone, stays stabilising).
-
-    The Moerder-Calise step solves the stationarity condition with P and S frozen on the free
-    entries, ΔK = −H_ff⁻¹ g_f with H = (C S Cᵀ) ⊗ R ≻ 0: a preconditioned gradient direction.
-    Where the exact Hessian is positive definite the Newton step is taken instead (quadratic
-    convergence). Backtracking keeps A − B K C Hurwitz (cost finite) and J decreasing (Armijo,
-    with a rounding allowance of 1e-14 |J|). Where J is flat to rounding, the decrease of a
-    Newton step cannot be seen in J; the full step is then taken if it shrinks the stationarity
-    residual (the gradient is resolved far better than J near the optimum).
-
-    Stops when the stationarity residual is 1e-3 rtol, or when the Newton decrement's predicted
-    decrease ½ gᵀ H⁻¹ g is at most :data:`DECREMENT_RTOL` |J| and no step makes progress.
-    Converged: residual ≤ rtol, or a predicted decrease ≤ DECREMENT_RTOL |J| (the cost is at
-    its optimum to what its evaluation resolves).
-    """
-    free = mask.ravel(order="F")
-    cost, p, s, weight, solver = eq42.evaluate(a, b, c, k, q, r, x0)
-    history.append(cost)
-    decrement, flat = np.inf, 0
-    for iteration in range(max_iterations + 1):
-        residuals, gradient = eq42.residuals(a - b @ k @ c, b, c, k, r, x0, p, s, weight, mask)
-        if residuals[2] <= 1e-3 * rtol or iteration == max_iterations:
-            break  # polished: iterations go on past rtol while the cost still decreases
-        g = gradient.ravel(order="F")[free]
-        direction, is_newton = _direction(b, c, k, r, p, s, solver, mask, g, newton)
-        step = np.zeros(k.size)
-        step[free] = direction
-        step = step.reshape(k.shape, order="F")
-        slope = float(np.sum(gradient * step))
-        decrement = -0.5 * slope / abs(cost) if is_newton else np.inf
-        alpha, trial = 1.0, None
-        while alpha > 1e-14:
-            trial = eq42.evaluate(a, b, c, k + alpha * step, q, r, x0, need_s=False)
-            if trial is not None and trial[0] <= cost + 1e-4 * alpha * slope + 1e-14 * abs(cost):
-                break
-            trial, alpha = None, 0.5 * alpha
-        flat = flat + 1 if trial is not None and trial[0] >= cost else 0
-        if (trial is None or flat > 3) and decrement <= DECREMENT_RTOL:
-            polished = eq42.evaluate(a, b, c, k + step, q, r, x0)
-            if polished is None:
-                break
-            new = eq42.residuals(
-                a - b @ (k + step) @ c, b, c, k + step, r, x0, *polished[1:4], mask
-            )
-            if new[0][2] >= 0.5 * residuals[2] or polished[0] > cost + DECREMENT_RTOL * abs(cost):
-                break  # the full Newton step no longer shrinks the residual: at round-off
-            k, alpha, flat = k + step, 1.0, 0
-            cost, p, s, weight, solver = polished
-            history.append(cost)
-            continue
-        if trial is None or flat > 3:
-            break  # no decrease within rounding and no Newton polish: stationary numerically
-        k = k + alpha * step
-        cost, p, s, weight, solver = eq42.evaluate(a, b, c, k, q, r, x0)
-        history.append(cost)
-    converged = residuals[2] <= rtol or decrement <= DECREMENT_RTOL
-    return _Descent(k, p, s, residuals, decrement, iteration, converged)
-
-
 def _stabilise(
     a: np.ndarray,
     b: np.ndarray,
@@ -219,9 +100,7 @@ def _stabilise(
         if alpha < 0.0:
             return k
         shift = alpha + max(0.1 * abs(alpha), 1e-3 * scale)
-        k = _descent(
-            a - shift * eye_n, b, c, eye_n, eye_m, eye_n, k, mask, 1e-6, 20, [], False
-        ).gain
+        k = descend(a - shift * eye_n, b, c, eye_n, eye_m, eye_n, k, mask, 1e-6, 20, [], False).gain
         alpha = spectral_abscissa(a - b @ k @ c)
         if alpha < best - 1e-6 * scale:
             best, best_k, stalled = alpha, k, 0
@@ -286,7 +165,7 @@ def output_feedback_lqr(
     rtol
         Converged when the relative residual of the stationarity condition is below this, or
         when the Newton decrement puts the decrease still to be had below
-        :data:`DECREMENT_RTOL` |J| (J at its optimum to what its evaluation resolves: the
+        ``DECREMENT_RTOL`` |J| (J at its optimum to what its evaluation resolves: the
         residual, a difference of two terms, has a floor that depends on the machine's
         rounding); iterations continue past rtol (to 1e-3 rtol) while they make progress.
     max_iterations
@@ -311,7 +190,7 @@ def output_feedback_lqr(
     gradient direction), and backtracks until the closed loop is Hurwitz and the Armijo condition
     holds, so every iterate is stabilising and the cost never increases (up to a rounding
     allowance of 1e-14 |J|). Where J is flat to rounding (the predicted decrease below
-    :data:`DECREMENT_RTOL` |J|), full Newton steps polish the gain while they halve the
+    ``DECREMENT_RTOL`` |J|), full Newton steps polish the gain while they halve the
     stationarity residual and raise J by no more than that allowance: the residual's floor
     depends on the machine's rounding, and without this step it stalled at 4e-8 on OpenBLAS's
     SkylakeX kernel where the Haswell kernel reached 2e-13. Without a stabilising initial gain,
@@ -336,7 +215,7 @@ def output_feedback_lqr(
     if spectral_abscissa(a - b @ k @ c) >= 0.0:
         k, source = _stabilise(a, b, c, k, mask), "homotopy"
     history: list[float] = []
-    found = _descent(a, b, c, q, r, x0, k, mask, rtol, max_iterations, history)
+    found = descend(a, b, c, q, r, x0, k, mask, rtol, max_iterations, history)
     return OutputFeedbackResult(
         gain=found.gain,
         input_names=tuple(in_names),
