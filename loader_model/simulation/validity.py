@@ -107,15 +107,13 @@ class ValidityBounds:
         limits = {"airborne_s": (3600.0, "s"), "seat_acceleration_m_s2": (1e5, "m/s^2")}
         for field in dataclasses.fields(self):
             maximum, unit = limits.get(field.name, (math.pi, "rad"))
-            value = as_number(
-                getattr(self, field.name),
-                f"validity bound {field.name}",
-                unit,
-                minimum=0.0,
-                maximum=maximum,
-                strict_minimum=True,
-            )
-            object.__setattr__(self, field.name, value)
+            value, name = getattr(self, field.name), f"validity bound {field.name}"
+            if not isinstance(value, int | float | np.integer | np.floating):  # not "1" either
+                raise ValueError(
+                    f"{name} must be a number in (0, {maximum:g}] {unit}; got {value!r}"
+                )
+            number = as_number(value, name, unit, minimum=0.0, maximum=maximum, strict_minimum=True)
+            object.__setattr__(self, field.name, number)
 
 
 def _parameter(params: np.ndarray, name: str) -> float:
