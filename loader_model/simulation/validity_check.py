@@ -47,12 +47,14 @@ class ValidityViolation:
     bound : str
         The field of :class:`ValidityBounds` crossed.
     signal : str
-        The column that shows it (``theta_1``, ``phi``, ``F_Ay``, ``f_Sx``, ...).
+        The column that shows it: ``theta_1``, ``phi`` (θ2 − θ1), ``F_Ay, F_By``, ``f_Sx`` or
+        ``f_Sy``.
     index : int
         Row of the time series (t = index · h).
     time_s, value, limit : float
-        Its time in s, the signal's value and the bound, both in the signal's unit (for
-        ``airborne_s``: the time in the air so far, s).
+        Its time in s, the signal's value and the bound it crossed, both in the signal's unit
+        and signed (the nose-down and retracted bounds negative; for ``airborne_s``: the time in
+        the air so far and the bound, s; for the seat: the acceleration from its static value).
     state : mapping of str to float
         The plant state at that row.
     """
