@@ -76,6 +76,16 @@ def test_board_and_slope_match_closed_form():
     assert slope.max() == pytest.approx(a / (R_M - H_M), rel=1e-3)
 
 
+def test_queries_with_no_vertex_within_reach_lie_on_the_segment():
+    """Every query more than R from every vertex (a slow drive, 1 kHz samples millimetres apart):
+    the disc rests on the segment, h + R (sqrt(1 + m²) − 1) (an empty corner set crashed)."""
+    profile = RoadProfile(np.array([0.0, 10.0]), np.array([0.0, 0.1]))
+    s = np.linspace(4.9, 5.1, 300)
+    height_m, slope = effective_road(profile, s, R_M)
+    np.testing.assert_allclose(height_m, 0.01 * s + R_M * (np.sqrt(1.0001) - 1.0), atol=1e-15)
+    np.testing.assert_array_equal(slope, 0.01)
+
+
 def test_edge_contact_length():
     assert edge_contact_length(R_M, H_M) == pytest.approx(np.sqrt(0.42**2 - 0.38**2), rel=1e-15)
     with pytest.raises(ValueError, match=r"step_height_m must be a finite number in \[0, 0.42\] m"):

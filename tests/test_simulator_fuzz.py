@@ -1,8 +1,10 @@
 """200 fuzzed closed-loop runs (issue 12): random parameters within their validated ranges,
 ISO 8608 roads up to class E, speeds up to 20 km/h, all four controllers. Each run ends with a
-finite result or a clear error (a refused parameter set naming its field, or a failed solve
-naming the time and the state); none returns NaN, none hangs (each run is a few seconds of
-simulated time on the compiled fixed-step scheme)."""
+finite result or a clear error (a refused parameter set naming its field, a stop where the run
+left the model's range of validity, or a failed solve, both naming the time and the state); none
+returns NaN, none hangs (each run is a few seconds of simulated time on the compiled fixed-step
+scheme). Measured: 166 finite, 32 refused, 2 stopped (seat acceleration above 50 g: a relief
+valve set below the static pressure, a tyre damper 14 times the default's)."""
 
 from __future__ import annotations
 
@@ -20,7 +22,12 @@ from loader_model.simulation.ride_control import (
     controller_setup,
     plant_controller,
 )
-from loader_model.simulation.simulator import SimulationError, course_input, simulate
+from loader_model.simulation.simulator import (
+    ModelValidityError,
+    SimulationError,
+    course_input,
+    simulate,
+)
 
 RUNS = 200
 FIELDS = [
@@ -47,7 +54,7 @@ def _random_value(rng: np.random.Generator, meta, current: float) -> float:
 @pytest.mark.slow
 def test_fuzzed_runs_end_finite_or_with_a_clear_error() -> None:
     rng = np.random.default_rng(20261122)
-    outcomes = {"finite": 0, "refused": 0, "failed solve": 0}
+    outcomes = {"finite": 0, "refused": 0, "left validity": 0, "failed solve": 0}
     for run in range(RUNS):
         loader = default_loader()
         updates = {}
@@ -82,6 +89,11 @@ def test_fuzzed_runs_end_finite_or_with_a_clear_error() -> None:
             }
         try:
             result = simulate(course_input(course, params), params, duration_s=3.0, **control)
+        except ModelValidityError as error:
+            assert " s: " in str(error) and "; state: " in str(error), str(error)
+            assert error.result.time_s[-1] == error.violation.time_s
+            outcomes["left validity"] += 1
+            continue
         except SimulationError as error:
             assert " s" in str(error) and "state" in str(error), str(error)
             outcomes["failed solve"] += 1

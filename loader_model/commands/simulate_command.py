@@ -5,6 +5,10 @@ equilibrium and drives over the course at constant speed; the controller runs at
 the ISO 2631-1 evaluation of the seat (x: Wd, z: Wk, pitch: We; Eq. 49, a_total Eq. 50 with
 k = 0.4 for pitch) and the events of the run (tyre lift-off, end stops, cavitation, pump
 saturation); writes the time series (CSV with units or NPZ) and a PNG of the seat accelerations.
+A run that leaves the model's range of validity (tipping over, the boom past its end stops, the
+machine in the air for over 0.5 s, the seat above 50 g: :mod:`loader_model.simulation.validity`)
+stops there: no evaluation, an error naming the time, the state and the bound (exit code 2), and
+the time series up to the stop written where --output asks.
 
 Controllers: ``baseline`` (the pump holds the boom at its static command), ``passive`` (the
 same, with the accumulator connected: the commercial ride control), ``virtual-accumulator``
@@ -17,8 +21,13 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from loader_model.commands.common import add_model_arguments
+
+if TYPE_CHECKING:
+    from loader_model.simulation.result import Event
+    from loader_model.simulation.validity_check import ModelValidityError
 
 __all__ = ["CONTROLLERS", "HELP", "add_arguments", "run"]
 
@@ -80,13 +89,18 @@ def _course(text: str, speed_kmh: float, duration_s: float | None, seed: int):
 
 
 def run(args: argparse.Namespace) -> int:
-    """Run the simulation, print the evaluation and write the files. Returns 0."""
+    """Run the simulation, print the evaluation and write the files. Returns 0.
+
+    A run that leaves the model's range of validity prints its events, writes its time series
+    up to the violation and raises ValueError naming the time, the state, the bound and the
+    files (exit code 2): no ISO 2631 evaluation of it.
+    """
     from loader_model.export import check_output_path
     from loader_model.iso2631 import format_evaluation
     from loader_model.plant.plant_parameters import PlantOptions, plant_parameter_vector
     from loader_model.simulation.result import RESULT_SUFFIXES
     from loader_model.simulation.seat_plot import PLOT_SUFFIXES, plot_seat
-    from loader_model.simulation.simulator import course_input, simulate
+    from loader_model.simulation.simulator import ModelValidityError, course_input, simulate
 
     plot = args.plot
     if args.output is not None:
@@ -128,23 +142,50 @@ def run(args: argparse.Namespace) -> int:
             "settings": settings,
             "controller_state": state,
         }
-    result = simulate(course_input(course, params), params, duration_s=args.duration, **control)
     title = f"{course.name}; {args.controller} controller, load {args.load}"
+    try:
+        result = simulate(course_input(course, params), params, duration_s=args.duration, **control)
+    except ModelValidityError as error:  # no comfort figure for it: the evidence, then the error
+        raise ValueError(_stopped(error, args.output, plot, title)) from None
     print(format_evaluation(result.seat_evaluation(), title=title))
     print(
         f"simulated {result.time_s.size * result.metadata['period_s']:.3f} s in "
         f"{result.metadata['wall_time_s']:.3f} s (real-time factor "
         f"{result.metadata['real_time_factor']:.0f}, {result.metadata['backend']})"
     )
-    kinds = sorted({event.kind for event in result.events})
-    counts = ", ".join(f"{sum(e.kind == kind for e in result.events)} {kind}" for kind in kinds)
-    print(f"events: {len(result.events)}" + (f" ({counts})" if counts else ""))
-    for event in result.events[:_SHOWN_EVENTS]:
-        print(f"  {event.describe()}")
-    if len(result.events) > _SHOWN_EVENTS:
-        print(f"  ... {len(result.events) - _SHOWN_EVENTS} more (all in the result's events)")
+    _print_events(result.events)
     if args.output is not None:
         print(f"wrote {result.write(args.output)}")
     if plot is not None:
         print(f"wrote {plot_seat(result, plot, title)}")
     return 0
+
+
+def _print_events(events: tuple[Event, ...]) -> None:
+    """Print the count of events per kind and the first few."""
+    kinds = sorted({event.kind for event in events})
+    counts = ", ".join(f"{sum(e.kind == kind for e in events)} {kind}" for kind in kinds)
+    print(f"events: {len(events)}" + (f" ({counts})" if counts else ""))
+    for event in events[:_SHOWN_EVENTS]:
+        print(f"  {event.describe()}")
+    if len(events) > _SHOWN_EVENTS:
+        print(f"  ... {len(events) - _SHOWN_EVENTS} more (all in the result's events)")
+
+
+def _stopped(error: ModelValidityError, output: str | None, plot: str | None, title: str) -> str:
+    """For a run stopped outside the model's range of validity: print its events, write its time
+    series and figure up to the stop where asked, and return the error message naming them."""
+    from loader_model.simulation.seat_plot import plot_seat
+
+    result = error.result
+    _print_events(result.events)
+    written = [] if output is None else [str(result.write(output))]
+    written += [] if plot is None else [str(plot_seat(result, plot, title))]
+    for path in written:
+        print(f"wrote {path}")
+    where = (
+        f"wrote the run up to it: {', '.join(written)}"
+        if written
+        else "no time series written (give --output FILE.csv or FILE.npz to keep it)"
+    )
+    return f"{error}; no ISO 2631 evaluation of a run outside the model; {where}"

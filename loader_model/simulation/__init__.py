@@ -17,6 +17,9 @@ CasADi at import):
 - :mod:`~loader_model.simulation.simulator`: ``simulate`` over a road input, ``course_input``.
 - :mod:`~loader_model.simulation.result`, :mod:`~loader_model.simulation.events`: the labelled
   time series with units and events, CSV and NPZ.
+- :mod:`~loader_model.simulation.validity`, :mod:`~loader_model.simulation.validity_check`: the
+  model's range of validity (tip-over pitch, boom angle, time in the air, seat acceleration) and
+  the stop of a run that leaves it (``ModelValidityError`` with the rows up to it).
 - :mod:`~loader_model.simulation.reference`: CVODES reference at rtol 1e-10 (for the tests).
 - :mod:`~loader_model.simulation.seat_plot`: figure of the seat accelerations.
 """

@@ -174,7 +174,7 @@ def _envelope_chunk(
     radius_m: float,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Wheel-centre height y_c and its slope for one chunk of queries (see module notes)."""
-    offsets = np.arange(int(count.max()) + 1)
+    offsets = np.arange(max(int(count.max()), 1) + 1)  # a corner column even if none is in reach
     column = s[:, None]
     # Corners: vertices lo .. hi-1 (within R of s).
     vertex = np.minimum(lo[:, None] + offsets[:-1], d.size - 1)

@@ -82,7 +82,9 @@ class Event:
     ----------
     kind : str
         ``"cavitation"`` (absolute pressure below zero), ``"tyre_off_ground"``, ``"end_stop"``
-        (piston outside [0, stroke]) or ``"pump_saturation"`` (|V_p,ref| above V_p,max).
+        (piston outside [0, stroke]), ``"pump_saturation"`` (|V_p,ref| above V_p,max) or
+        ``"validity"`` (where a stopped run left the model's range of validity,
+        :mod:`~loader_model.simulation.validity`).
     signal : str
         The column that shows it.
     start_s, end_s : float

@@ -4,7 +4,10 @@
 (:func:`~loader_model.plant.equilibrium.static_state`), evaluates the controller every period h
 (zero-order hold on its command) and integrates the plant over each period with the compiled
 ROS2 scheme of :mod:`~loader_model.simulation.stepper`, rolled over chunks of periods by
-``mapaccum``. After each chunk it checks that everything is finite and raises
+``mapaccum``. After each chunk it checks the rows against the model's range of validity
+(:mod:`~loader_model.simulation.validity`: tip-over pitch, boom angle beyond the end stops, time in
+the air, seat acceleration) and stops at the first violation with :class:`ModelValidityError`,
+which carries the time series up to it; then it checks that everything is finite and raises
 :class:`SimulationError` naming the time and the state if not: no NaN leaves the simulator.
 Events (cavitation, tyre lift-off, end stops, pump saturation) are recorded in the result
 (:mod:`~loader_model.simulation.events`). Accuracy against a CVODES reference at rtol 1e-10:
@@ -24,6 +27,7 @@ from loader_model.control.sensors import SENSOR_NAMES, SensorModel, quantise
 from loader_model.plant.equilibrium import static_state
 from loader_model.plant.plant import EXOGENOUS_NAMES, OUTPUT_NAMES, STATE_NAMES, plant_function
 from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
+from loader_model.simulation import validity_check
 from loader_model.simulation.controllers import (
     CONTROLLER_PERIOD_S,
     check_controller,
@@ -34,9 +38,12 @@ from loader_model.simulation.events import DEFAULT_AIRBORNE_MIN_S, find_events
 from loader_model.simulation.result import SimulationResult
 from loader_model.simulation.stepper import compile_period
 from loader_model.simulation.travel import RoadInput
+from loader_model.simulation.validity import ValidityBounds, resolve_bounds
+from loader_model.simulation.validity_check import ModelValidityError, SimulationError
 
 __all__ = [
     "DEFAULT_CHUNK_PERIODS",
+    "ModelValidityError",
     "SimulationError",
     "course_input",
     "exogenous_table",
@@ -48,10 +55,6 @@ __all__ = [
 DEFAULT_CHUNK_PERIODS = 500
 #: Outputs that are states of the same name and value; they appear once in the result.
 _STATE_OUTPUTS = frozenset(OUTPUT_NAMES) & frozenset(STATE_NAMES)
-
-
-class SimulationError(ValueError):
-    """The integration failed or left the finite numbers; the message names time and state."""
 
 
 def _parameter(params: np.ndarray, name: str) -> float:
@@ -90,25 +93,6 @@ def exogenous_table(
     return np.column_stack([road.road(time_s), road.road_rate(time_s), forces])
 
 
-def _finite_or_raise(carry: np.ndarray, outputs: np.ndarray, start: int, period_s: float) -> None:
-    bad = ~(np.all(np.isfinite(carry), axis=0) & np.all(np.isfinite(outputs), axis=0))
-    if not bad.any():
-        return
-    index = int(np.flatnonzero(bad)[0])
-    previous = carry[:, index - 1] if index > 0 else None
-    state = (
-        "the state at the chunk's start"
-        if previous is None
-        else ", ".join(
-            f"{n}={v:.6g}" for n, v in zip(STATE_NAMES, previous[: len(STATE_NAMES)], strict=True)
-        )
-    )
-    raise SimulationError(
-        f"the integration left the finite numbers in the period starting at "
-        f"t = {(start + index) * period_s:.4f} s; last finite state: {state}"
-    )
-
-
 def simulate(
     road: RoadInput,
     params: Sequence[float] | np.ndarray,
@@ -124,6 +108,7 @@ def simulate(
     jit: bool = True,
     chunk_periods: int = DEFAULT_CHUNK_PERIODS,
     airborne_min_s: float = DEFAULT_AIRBORNE_MIN_S,
+    validity: ValidityBounds | None = None,
 ) -> SimulationResult:
     """Simulate the closed loop over ``road`` from the static equilibrium (module notes).
 
@@ -156,9 +141,12 @@ def simulate(
     jit : bool
         JIT-compile the period (falls back to the SX virtual machine without a C compiler).
     chunk_periods : int
-        Periods per ``mapaccum`` call; the finiteness check runs after each.
+        Periods per ``mapaccum`` call; the validity and finiteness checks run after each.
     airborne_min_s : float
         Shortest tyre lift-off recorded as an event, s.
+    validity : ValidityBounds, optional
+        The model's range of validity; default :func:`~loader_model.simulation.validity.
+        validity_bounds` of ``params``.
 
     Returns
     -------
@@ -167,6 +155,9 @@ def simulate(
 
     Raises
     ------
+    ModelValidityError
+        If the run leaves the range of validity: its ``violation`` and ``result`` (the rows up to
+        and including the violating one).
     SimulationError
         If the run leaves the finite numbers (naming the time and the last finite state).
     """
@@ -198,6 +189,7 @@ def simulate(
         road, time_s, None if disturbance is None else _extend(disturbance, count)
     )
     y_errors, y_steps = _sensor_errors(sensors, count)
+    monitor = validity_check.ValidityMonitor(resolve_bounds(validity, params), period_s)
     period, backend = compile_period(controller, period_s, substeps, jit)
     chunk = min(int(chunk_periods), count)
     roll = _rolled(period, chunk)
@@ -225,14 +217,18 @@ def simulate(
         e_block[:] = y_errors[rows]
         trigger()
         size = stop - start
-        _finite_or_raise(block[:size].T, y_block[:size].T, start, period_s)
         carries[start] = carry
         carries[start + 1 : stop] = block[: size - 1]
         outputs[start:stop] = y_block[:size]
         commands[start:stop] = u_block[:size]
+        violation = monitor.check(start, carries[start:stop], outputs[start:stop])
+        if violation is not None:  # keep the rows up to it: the evidence
+            count, carry = violation.index + 1, carries[violation.index].copy()
+            break
+        validity_check.raise_if_not_finite(block[:size].T, y_block[:size].T, start, period_s)
         carry[:] = block[size - 1]
     wall_s = time.perf_counter() - start_wall
-    states, y_all, u_all = carries.T, outputs.T, commands
+    states, y_all, u_all = carries[:count].T, outputs[:count].T, commands[:count]
     columns_out: dict[str, np.ndarray] = dict(
         zip(STATE_NAMES, states[: len(STATE_NAMES)], strict=True)
     )
@@ -266,10 +262,14 @@ def simulate(
         "sensors": None if sensors is None else dataclasses.asdict(sensors),
         "wall_time_s": wall_s,
         "real_time_factor": count * period_s / wall_s,
+        "validity": dataclasses.asdict(monitor.bounds),
     }
-    return SimulationResult(
+    result = SimulationResult(
         time_rows, columns_out, carry[: len(STATE_NAMES)].copy(), events, metadata
     )
+    if violation is not None:
+        raise ModelValidityError.stopping(violation, result)
+    return result
 
 
 _ROLLED: dict[tuple[int, int], ca.Function] = {}
