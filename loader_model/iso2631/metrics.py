@@ -91,11 +91,14 @@ def vibration_total_value(
 
 
 def crest_factor(weighted_acceleration: np.ndarray) -> float:
-    """Crest factor max |a_w(t)| / a_w (ISO 2631-1 6.2); the basic method suffices up to 9."""
+    """Crest factor max |a_w(t)| / a_w (ISO 2631-1 6.2); the basic method suffices up to 9.
+
+    Returns NaN, undefined, for a signal that is zero everywhere (no vibration).
+    """
     signal = as_signal(weighted_acceleration, "weighted_acceleration")
     rms = weighted_rms(signal)
     if rms == 0.0:
-        raise ValueError("weighted_acceleration is zero everywhere; its crest factor is undefined")
+        return math.nan
     return float(np.max(np.abs(signal)) / rms)
 
 
