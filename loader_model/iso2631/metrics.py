@@ -12,9 +12,9 @@ import math
 from collections.abc import Mapping
 
 import numpy as np
-import scipy.signal
 
 from loader_model.iso2631._checks import as_positive, as_signal, shown
+from loader_model.iso2631._digital import sos_filter
 
 __all__ = [
     "RUNNING_RMS_METHODS",
@@ -152,8 +152,8 @@ def running_rms(
         mean_square = (cumulative[window:] - cumulative[:-window]) / window
         return np.sqrt(np.maximum(mean_square, 0.0))
     decay = math.exp(-1.0 / (tau * rate))
-    mean_square = scipy.signal.lfilter([1.0 - decay], [1.0, -decay], squared)
-    return np.sqrt(mean_square)
+    mean_square, _ = sos_filter(np.array([[1.0 - decay, 0.0, 0.0, 1.0, -decay, 0.0]]), squared)
+    return np.sqrt(np.maximum(mean_square, 0.0))  # >= 0 up to rounding
 
 
 def maximum_transient_vibration_value(

@@ -5,7 +5,8 @@ for Wk, Wd, Wc, We and 6.3 % high for Wj below 16 Hz (``python -m tests.iso_accu
 FIR correction cannot hold the shape of the 100 Hz band limit at the 100 Hz Nyquist frequency.
 At 1 kHz and above it agrees with exact causal filtering to 3e-4. So a record sampled below
 :data:`INTERNAL_RATE_HZ` is upsampled by the smallest integer factor ``L`` that reaches it
-(band-limited polyphase interpolation, :func:`scipy.signal.resample_poly`), weighted at ``L fs``
+(band-limited polyphase interpolation, :func:`~loader_model.iso2631._digital.interpolate`, as
+:func:`scipy.signal.resample_poly` does it), weighted at ``L fs``
 and taken back at every ``L``-th sample, which keeps the output aligned with the input samples.
 
 The interpolation is zero-phase: the weighted sample ``n`` depends on the input up to 31
@@ -24,7 +25,14 @@ import functools
 import math
 
 import numpy as np
-import scipy.signal
+
+from loader_model.iso2631._digital import (
+    dc_gain,
+    fir_filter,
+    interpolate,
+    sos_filter,
+    sos_steady_state,
+)
 
 __all__ = [
     "BLOCK_SAMPLES",
@@ -55,9 +63,11 @@ _MARGIN = 48
 
 @functools.cache
 def _interpolator(factor: int) -> np.ndarray:
-    taps = scipy.signal.firwin(
-        2 * _HALF_LENGTH * factor + 1, 1.0 / factor, window=("kaiser", _KAISER_BETA)
-    )
+    """Kaiser-windowed sinc with cut-off fs_in / 2 (:func:`scipy.signal.firwin`'s design), each
+    phase scaled to a DC gain of 1 / ``factor``."""
+    numtaps = 2 * _HALF_LENGTH * factor + 1
+    lag = np.arange(numtaps) - _HALF_LENGTH * factor
+    taps = np.sinc(lag / factor) * np.kaiser(numtaps, _KAISER_BETA)
     for phase in range(factor):  # every output phase passes a constant exactly (no ripple)
         taps[phase::factor] /= factor * np.sum(taps[phase::factor])
     taps.setflags(write=False)
@@ -91,13 +101,11 @@ def weight_upsampled(
     numpy.ndarray
         Weighted samples at the input rate, same length as ``signal``.
     """
-    sos = np.array(sos)
     if steady:
-        sos_state = scipy.signal.sosfilt_zi(sos) * signal[0]
-        sos_dc_gain = np.prod(np.sum(sos[:, :3], axis=1) / np.sum(sos[:, 3:], axis=1))
-        fir_state = scipy.signal.lfilter_zi(fir, 1.0) * sos_dc_gain * signal[0]
+        sos_state = sos_steady_state(sos, signal[0])
+        fir_state = np.full(fir.size - 1, dc_gain(sos) * signal[0])
     else:
-        sos_state = np.zeros((sos.shape[0], 2))
+        sos_state = np.zeros(2 * sos.shape[0])
         fir_state = np.zeros(fir.size - 1)
     out = np.empty_like(signal)
     for start in range(0, signal.size, BLOCK_SAMPLES):
@@ -105,11 +113,9 @@ def weight_upsampled(
         low, high = start - _MARGIN, stop + _MARGIN
         # beyond the record's ends the signal is continued with its first and last value
         piece = signal[np.clip(np.arange(low, high), 0, signal.size - 1)]
-        upsampled = scipy.signal.resample_poly(
-            piece, factor, 1, window=np.array(_interpolator(factor))
-        )
+        upsampled = interpolate(piece, factor, _interpolator(factor))
         core = upsampled[_MARGIN * factor : (_MARGIN + stop - start) * factor]
-        filtered, sos_state = scipy.signal.sosfilt(sos, core, zi=sos_state)
-        filtered, fir_state = scipy.signal.lfilter(fir, 1.0, filtered, zi=fir_state)
+        filtered, sos_state = sos_filter(sos, core, sos_state)
+        filtered, fir_state = fir_filter(fir, filtered, fir_state)
         out[start:stop] = filtered[::factor]
     return out
