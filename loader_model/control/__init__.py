@@ -4,20 +4,16 @@ equivalents, output-feedback LQR and CasADi H2 gain optimisation.
 The algorithms are generic in the plant: they take numpy matrices or python-control systems.
 """
 
+import importlib
+from typing import Any
+
 from loader_model.control.controllers import (
     CONTROLLER_NAMES,
     controller_function,
     controller_state_names,
 )
 from loader_model.control.design_plant import DesignPlant
-from loader_model.control.h2_cost import h2_cost_function, h2_costs
-from loader_model.control.h2_design import H2DesignError, H2DesignResult, design_h2_gain
 from loader_model.control.linear_controller import LinearController, closed_loop, linear_controller
-from loader_model.control.output_feedback import (
-    NoStabilisingGainError,
-    OutputFeedbackResult,
-    output_feedback_lqr,
-)
 from loader_model.control.sensors import SENSOR_NAMES, SensorModel, sensor_signals
 from loader_model.control.settings import (
     SETTINGS_NAMES,
@@ -54,3 +50,23 @@ __all__ = [
     "settings_vector",
     "settings_vector_for_plant",
 ]
+
+#: Names of the design modules, loaded on first access (PEP 562): they import scipy.linalg and
+#: scipy.optimize (about 0.4 s), which the simulator, importing this package, does not need.
+_LAZY_ATTRIBUTES = {
+    "h2_cost_function": "h2_cost",
+    "h2_costs": "h2_cost",
+    "H2DesignError": "h2_design",
+    "H2DesignResult": "h2_design",
+    "design_h2_gain": "h2_design",
+    "NoStabilisingGainError": "output_feedback",
+    "OutputFeedbackResult": "output_feedback",
+    "output_feedback_lqr": "output_feedback",
+}
+
+
+def __getattr__(name: str) -> Any:
+    module = _LAZY_ATTRIBUTES.get(name)
+    if module is None:
+        raise AttributeError(f"module 'loader_model.control' has no attribute {name!r}")
+    return getattr(importlib.import_module(f"loader_model.control.{module}"), name)

@@ -26,7 +26,6 @@ from typing import Any
 
 import casadi as ca
 import numpy as np
-import scipy.linalg
 
 from loader_model.control.controllers import controller_function, controller_state_names
 from loader_model.control.sensors import SENSOR_NAMES
@@ -81,6 +80,7 @@ def linear_controller(name: str, settings: np.ndarray, y_sensor: np.ndarray) -> 
         :func:`~loader_model.control.sensors.sensor_signals` of the static plant outputs.
     """
     import control
+    import scipy.linalg  # here, not at the top: the simulator imports this package
 
     settings = np.asarray(settings, dtype=float).ravel()
     y0 = np.asarray(y_sensor, dtype=float).ravel()
