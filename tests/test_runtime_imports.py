@@ -99,14 +99,16 @@ def test_command_modules_import_light() -> None:
     assert _loaded_after("import loader_model.commands.simulate_command") == []
 
 
-def test_simulate_loads_no_plotting_control_or_scipy_signal() -> None:
+@pytest.mark.parametrize("controller", ["baseline", "skyhook"])
+def test_simulate_loads_no_plotting_control_or_scipy_signal(controller: str) -> None:
     """The whole ``simulate`` run (no plot asked for) needs neither matplotlib, python-control
-    nor scipy.signal: the ISO 2631-1 weightings run on NumPy."""
+    nor scipy.signal: the ISO 2631-1 weightings run on NumPy, a controller starts at its fixed
+    point without its python-control equivalent."""
     code = (
         "import contextlib, io\n"
         "import loader_model.cli as cli\n"
         "with contextlib.redirect_stdout(io.StringIO()) as out:\n"
-        "    assert cli.main(['simulate', '--duration', '3']) == 0\n"
+        f"    assert cli.main(['simulate', '--duration', '3', '--controller', {controller!r}]) == 0\n"
         "assert 'a_v (paper Eq. 50)' in out.getvalue()\n"
     )
     assert _loaded_after(code, ("matplotlib", "control", "scipy.signal", "sympy")) == []
