@@ -13,7 +13,15 @@ as :func:`scipy.signal.sosfilt` does) in blocks of :data:`BLOCK_SAMPLES`: within
 output is a lower-triangular Toeplitz matrix of the impulse response times the block's input
 plus the response to the state at its start, so each block is two matrix products and the
 Python loop runs once per block, not per sample. Both are exact rearrangements of the sample
-recursion: sample ``n`` of the output depends on the input up to ``n`` only.
+recursion: sample ``n`` of the output depends on the input up to ``n`` only. The products use
+:func:`numpy.einsum` and the FIR fit :func:`least_squares`, not BLAS or LAPACK, whose threads
+stall on a busy machine.
+
+Rounding: the signal is filtered less its first sample (see :func:`sos_filter`), so an offset such
+as gravity adds none. Against an exact (long-double) recursion of the same sections, with a 1 g
+offset from its steady state, the output is off by 1.1e-12 of its peak for Wk at 1 kHz and
+1.8e-10 for Wj at 10 kHz, where :func:`scipy.signal.sosfilt` is off by 2.1e-10 and 6.2e-8
+(``tests/test_iso2631_digital.py``; rounding grows as the poles approach z = 1 with the rate).
 """
 
 from __future__ import annotations
