@@ -2,17 +2,87 @@
 
 Arguments must be real numbers (Python or NumPy ints and floats; not booleans, strings or
 complex numbers), finite, of the stated shape, and optionally within a plausible magnitude;
-every failure is a ValueError naming the argument.
+every failure is a ValueError naming the argument. Where one number is expected
+(:func:`real_number`, :func:`real_integer`), an array is refused too, even a 0-d or one-element
+one: ``[2830.0]`` for a mass is a mistake, not a mass.
 """
 
 from __future__ import annotations
 
+import math
 import numbers
 from typing import Any
 
 import numpy as np
 
-__all__ = ["finite_scalar", "finite_vector", "real_array"]
+__all__ = ["finite_scalar", "finite_vector", "real_array", "real_integer", "real_number"]
+
+#: What :func:`real_number` accepts, for its messages.
+NUMBER = "a real number (int, float or NumPy scalar)"
+_SHOWN_CHARACTERS = 60
+
+
+def _shown(value: Any) -> str:
+    """``repr`` of ``value``, shortened: huge integers by their digit count, long text cut."""
+    if isinstance(value, int) and not isinstance(value, bool) and len(str(abs(value))) > 20:
+        return f"{str(value)[:20]}... ({len(str(abs(value)))} digits)"
+    text = repr(value.item() if isinstance(value, np.generic) else value)
+    return text if len(text) <= _SHOWN_CHARACTERS else text[: _SHOWN_CHARACTERS - 3] + "..."
+
+
+def _kind(value: Any) -> str:
+    """What ``value`` is, for a message that says it is not a number."""
+    if isinstance(value, bool | np.bool_):
+        return "a boolean"
+    if isinstance(value, str | bytes):
+        return "a string"
+    if isinstance(value, np.ndarray):
+        return f"an array of shape {value.shape}"
+    if isinstance(value, numbers.Complex):
+        return "a complex number"
+    if value is None:
+        return "None"
+    return f"a {type(value).__name__}"
+
+
+def real_number(name: str, value: Any, allowed: str = NUMBER) -> float:
+    """Return one real number ``value`` as a float, or raise a ValueError naming ``name``.
+
+    Parameters
+    ----------
+    name : str
+        The argument's or parameter's name, used in messages.
+    value : object
+        A Python int or float or a NumPy integer or floating scalar (any
+        :class:`numbers.Real` but a boolean). Refused: booleans, strings, complex numbers,
+        arrays (also 0-d and one-element ones), lists, tuples, None and other objects.
+    allowed : str
+        What is allowed, for the message.
+
+    Returns
+    -------
+    float
+        The value (not checked for finiteness: the caller's range says what is allowed).
+    """
+    if isinstance(value, numbers.Real) and not isinstance(value, bool | np.bool_):
+        try:
+            return float(value)
+        except OverflowError:
+            raise ValueError(
+                f"{name}: value {_shown(value)} is not a finite float; allowed: a finite number"
+            ) from None
+    raise ValueError(
+        f"{name}: value {_shown(value)} is not a number; allowed: {allowed}, not {_kind(value)}"
+    )
+
+
+def real_integer(name: str, value: Any) -> int:
+    """Return one integer ``value`` (Python or NumPy int, not a boolean) as an int, or raise a
+    ValueError naming ``name``; floats are refused even when integral (``2.0`` for a count)."""
+    if isinstance(value, numbers.Integral) and not isinstance(value, bool | np.bool_):
+        return int(value)
+    real_number(name, value, "an integer")  # names a non-number by its kind
+    raise ValueError(f"{name}: value {_shown(value)} is not an integer; allowed: an integer")
 
 
 def real_array(name: str, value: Any, expected: str = "real numbers") -> np.ndarray:
@@ -86,5 +156,14 @@ def finite_vector(
 
 
 def finite_scalar(name: str, value: Any, limit: float | None = None, unit: str = "") -> float:
-    """Return ``value`` as a finite float, or raise a ValueError naming it."""
-    return float(finite_vector(name, value, 1, limit, unit)[0])
+    """Return one real number ``value`` (see :func:`real_number`; no array, not even one of one
+    element) as a finite float, optionally at most ``limit`` in magnitude, or raise a ValueError
+    naming ``name``."""
+    number = real_number(name, value)
+    if not math.isfinite(number):
+        raise ValueError(f"{name} must be finite; got {number}")
+    if limit is not None and abs(number) > limit:
+        raise ValueError(
+            f"{name} = {number!r} is implausible; allowed: |{name}| <= {limit:g} {unit}".rstrip()
+        )
+    return number

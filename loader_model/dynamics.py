@@ -148,7 +148,9 @@ class LoaderDynamics:
     Raises
     ------
     ValueError
-        On a missing, unknown or non-finite parameter; a value outside the plausible range of
+        On a missing or unknown parameter; a value that is not one finite real number (a Python
+        or NumPy int or float; not an array, even of one element, a boolean or a string,
+        :func:`loader_model.arrays.real_number`); a value outside the plausible range of
         the parameter-file field it comes from, coincident points or A not ahead of B
         (:func:`loader_model.model_parameter_checks.check_model_parameters`); a static axle load
         that is not compressive; or a mass matrix that is not positive definite at p = 0.
@@ -179,7 +181,10 @@ class LoaderDynamics:
         missing = [n for n in PARAMETER_NAMES if n not in parameter_values and n not in optional]
         if missing:
             raise ValueError(f"missing model parameters {missing}")
-        values = {n: finite_scalar(n, parameter_values.get(n, 0.0)) for n in PARAMETER_NAMES}
+        values = {
+            n: finite_scalar(f"model parameter {n}", parameter_values.get(n, 0.0))
+            for n in PARAMETER_NAMES
+        }
         given = {n: v for n, v in values.items() if n in parameter_values and n not in optional}
         if check_ranges:
             check_model_parameters(given)

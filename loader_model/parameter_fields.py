@@ -14,9 +14,12 @@ every field has finite bounds and a reason).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 from typing import Any
+
+from loader_model.arrays import real_integer, real_number
 
 __all__ = [
     "COORDINATE",
@@ -25,6 +28,7 @@ __all__ = [
     "POSITIVE",
     "Range",
     "Sourced",
+    "TypedLeaves",
     "integer",
     "si",
     "sources_field",
@@ -109,7 +113,43 @@ def unit_of(cls: type, name: str) -> str:
     return cls.__dataclass_fields__[name].metadata["unit"]
 
 
-class Sourced:
+def _point(name: str, value: Any, shape: int) -> tuple[float, ...]:
+    if isinstance(value, str | bytes) or not hasattr(value, "__len__") or len(value) != shape:
+        raise ValueError(
+            f"{name}: value {value!r} is not a sequence of {shape} numbers; allowed: a tuple, "
+            f"list or 1-D array of {shape} real numbers"
+        )
+    return tuple(real_number(f"{name}[{i}]", item) for i, item in enumerate(value))
+
+
+class TypedLeaves:
+    """Mixin of the parameter dataclasses: on construction every leaf holds what its metadata says.
+
+    Every way a parameter value enters a parameter set (a TOML file, :func:`~loader_model.
+    parameters.replace`, the dataclass built in code, :func:`dataclasses.replace`) constructs the
+    dataclass, so this is where a value of the wrong type is refused, naming the class, the field,
+    the value and what is allowed: one real number (:func:`loader_model.arrays.real_number`: no
+    array, not even a one-element one, no boolean or string), an integer count, or ``shape`` real
+    numbers for a point. Values are stored as Python floats, ints and tuples. Ranges and
+    consistency are checked by :func:`loader_model.parameters.validate`.
+    """
+
+    def __post_init__(self) -> None:
+        for leaf in dataclasses.fields(self):  # type: ignore[arg-type]
+            if "unit" not in leaf.metadata:
+                continue  # a section, or the sources
+            name = f"{type(self).__name__}.{leaf.name}"
+            value = getattr(self, leaf.name)
+            if leaf.metadata["integer"]:
+                checked: Any = real_integer(name, value)
+            elif leaf.metadata["shape"]:
+                checked = _point(name, value, leaf.metadata["shape"])
+            else:
+                checked = real_number(name, value)
+            object.__setattr__(self, leaf.name, checked)
+
+
+class Sourced(TypedLeaves):
     """Mixin of the top-level parameter sets: the one-line source or reason of every value."""
 
     sources: tuple[tuple[str, str], ...]

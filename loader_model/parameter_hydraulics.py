@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from loader_model.parameter_fields import Range, integer, si
+from loader_model.parameter_fields import Range, TypedLeaves, integer, si
 
 _DEAD_VOLUME = Range(1e-6, 0.05, reason="hose, tube and port volume per cylinder of 1 ml to 50 l")
 
@@ -25,7 +25,7 @@ __all__ = [
 
 
 @dataclass(frozen=True)
-class CylinderParameters:
+class CylinderParameters(TypedLeaves):
     """Single-rod lift cylinders in parallel (section 2.3, Fig. 8).
 
     Attributes
@@ -83,7 +83,7 @@ class CylinderParameters:
 
 
 @dataclass(frozen=True)
-class HydraulicParameters:
+class HydraulicParameters(TypedLeaves):
     """Oil and charge circuit.
 
     Attributes
@@ -145,7 +145,7 @@ class HydraulicParameters:
 
 
 @dataclass(frozen=True)
-class LeakageParameters:
+class LeakageParameters(TypedLeaves):
     """Internal seal leakage Q_L = k_Lp (p_A − p_B) − k_Lv ẋ_act (Eq. 47, Table 5).
 
     Attributes
@@ -175,7 +175,7 @@ class LeakageParameters:
 
 
 @dataclass(frozen=True)
-class FrictionParameters:
+class FrictionParameters(TypedLeaves):
     """Cylinder friction F_f = f_s e^(−τ_s|v|) tanh(γ v) + f_C p_A + f_v v (Eq. 46, Table 4).
 
     Attributes
@@ -214,7 +214,7 @@ class FrictionParameters:
 
 
 @dataclass(frozen=True)
-class PumpParameters:
+class PumpParameters(TypedLeaves):
     """Variable displacement pump with a rate-limited second-order displacement loop (Fig. 9).
 
     Attributes
@@ -265,7 +265,7 @@ class PumpParameters:
 
 
 @dataclass(frozen=True)
-class ControllerParameters:
+class ControllerParameters(TypedLeaves):
     """Skyhook output feedback and pressure loop (sections 3.2, 3.3; Table 3).
 
     Attributes
@@ -339,7 +339,7 @@ class ControllerParameters:
 
 
 @dataclass(frozen=True)
-class AccumulatorParameters:
+class AccumulatorParameters(TypedLeaves):
     """Passive ride control: gas accumulators on the piston side through an orifice.
 
     Attributes

@@ -22,8 +22,10 @@ with signs, not as the paper's abs()-based distances of Eq. 8, 9 (DESIGN.md erra
           '--------------------------------'
                B o                  o A          (x forward ->, y up)
 
-The dataclasses carry no validation of their own: :func:`loader_model.parameters.validate` checks
-ranges and consistency, and the TOML loaders call it before returning.
+The dataclasses check only the type of each value on construction
+(:class:`~loader_model.parameter_fields.TypedLeaves`: a real number, not an array, boolean or
+string); :func:`loader_model.parameters.validate` checks ranges and consistency, and the TOML
+loaders call it before returning.
 """
 
 from __future__ import annotations
@@ -35,6 +37,7 @@ from loader_model.parameter_fields import (
     COORDINATE,
     Range,
     Sourced,
+    TypedLeaves,
     si,
     sources_field,
     unit_of,
@@ -81,7 +84,7 @@ _TYRE_DAMPING = Range(
 
 
 @dataclass(frozen=True)
-class Geometry:
+class Geometry(TypedLeaves):
     """Points of the chassis and of the boom at the operating boom angle (all in m).
 
     Attributes
@@ -119,7 +122,7 @@ class Geometry:
 
 
 @dataclass(frozen=True)
-class ChassisParameters:
+class ChassisParameters(TypedLeaves):
     """Chassis, body 1 of Eq. 6, 7.
 
     Attributes
@@ -146,7 +149,7 @@ class ChassisParameters:
 
 
 @dataclass(frozen=True)
-class BoomParameters:
+class BoomParameters(TypedLeaves):
     """Boom with the bucket attachment structure, without the bucket load (part of body 2).
 
     Attributes
@@ -232,7 +235,7 @@ class BucketLoad(Sourced):
 
 
 @dataclass(frozen=True)
-class AxleTyre:
+class AxleTyre(TypedLeaves):
     """Linear tyre spring-damper of one axle, left and right tyres lumped (Eq. 1-4).
 
     Attributes
@@ -250,7 +253,7 @@ class AxleTyre:
 
 
 @dataclass(frozen=True)
-class TyreParameters:
+class TyreParameters(TypedLeaves):
     """Tyres of the front axle (point A) and of the rear axle (point B), and their contact law.
 
     The contact law (``derive/contact.py``) is the paper's linear law (Eq. 1-4) while a tyre is
@@ -282,7 +285,7 @@ class TyreParameters:
 
 
 @dataclass(frozen=True)
-class EnvironmentParameters:
+class EnvironmentParameters(TypedLeaves):
     """Environment.
 
     Attributes

@@ -27,6 +27,8 @@ import typing
 from collections.abc import Iterator, Mapping
 from typing import Any
 
+from loader_model.arrays import real_integer, real_number
+
 __all__ = ["build", "dumps", "iter_leaves", "leaf_metadata", "section_types", "to_raw"]
 
 _LEAF_KEYS = ("value", "unit", "source")
@@ -77,21 +79,11 @@ def _check_keys(data: Mapping[str, Any], allowed: list[str], where: str) -> None
 
 
 def _number(raw: Any, path: str, integer: bool) -> float | int:
-    if isinstance(raw, bool) or not isinstance(raw, int | float):
-        kind = "an integer" if integer else "a number"
-        raise ValueError(f"{path}: value {raw!r} is not {kind}")
+    """One number of a leaf: :func:`loader_model.arrays.real_integer` or a finite
+    :func:`loader_model.arrays.real_number` (a TOML array, a boolean or a string is refused)."""
     if integer:
-        if not isinstance(raw, int):
-            raise ValueError(f"{path}: value {raw!r} is not an integer")
-        return raw
-    try:
-        value = float(raw)
-    except OverflowError:
-        shown = str(raw)[:20] + "..."
-        raise ValueError(
-            f"{path}: value {shown} ({len(str(abs(raw)))} digits) is not a finite float; "
-            "allowed: a finite number"
-        ) from None
+        return real_integer(path, raw)
+    value = real_number(path, raw)
     if not math.isfinite(value):
         raise ValueError(f"{path}: value {value!r} is not finite; allowed: a finite number")
     return value

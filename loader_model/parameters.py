@@ -50,7 +50,7 @@ from loader_model.parameter_schema import (
     PumpParameters,
     TyreParameters,
 )
-from loader_model.parameter_toml import build, dumps, iter_leaves, to_raw
+from loader_model.parameter_toml import build, dumps, iter_leaves, leaf_metadata, to_raw
 
 __all__ = [
     "COINCIDENCE_TOLERANCE_M",
@@ -180,16 +180,17 @@ def replace(params: P, updates: Mapping[str, Any], source: str | None = None) ->
         source is kept when omitted.
     """
     raw = to_raw(params)
-    paths = [path for path, _, _ in iter_leaves(type(params))]
+    leaves = {path: (cls, name) for path, cls, name in iter_leaves(type(params))}
     for path, value in updates.items():
-        if path not in paths:
-            close = difflib.get_close_matches(path, paths, n=1, cutoff=0.5)
+        if path not in leaves:
+            close = difflib.get_close_matches(path, list(leaves), n=1, cutoff=0.5)
             hint = f"; did you mean {close[0]!r}?" if close else ""
             raise ValueError(f"{path}: unknown parameter{hint}")
         leaf = functools.reduce(lambda node, key: node[key], path.split("."), raw)
-        leaf["value"] = value.tolist() if hasattr(value, "tolist") else value
-        if isinstance(leaf["value"], tuple):
-            leaf["value"] = list(leaf["value"])
+        if leaf_metadata(*leaves[path])["shape"]:  # a point: a tuple, list or 1-D array
+            value = value.tolist() if getattr(value, "ndim", 0) == 1 else value
+            value = list(value) if isinstance(value, tuple) else value
+        leaf["value"] = value  # a number is checked as given: an array is not a number
         if source is not None:
             leaf["source"] = source
     return validate(build(type(params), raw))

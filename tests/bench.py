@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tests import bench_robustness
+from tests import bench_robustness, bench_startup
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -54,6 +54,7 @@ def main() -> int:
         output = str(Path(scratch) / "generated")
         regenerate = _median_seconds(_process("-m", "derive", "--output", output), 5)
     _report("make regenerate (goal <= 5 s)", regenerate, python_start, unit="s")
+    bench_startup.main()
 
     from loader_model.dynamics import LoaderDynamics
 

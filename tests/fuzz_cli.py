@@ -169,7 +169,9 @@ def _csv_files(folder: Path) -> dict[str, tuple[Path, bool]]:
     make("duplicate", [["time", "x", "x"], *rows[1:]])
     make("no_time", [["t", "x", "z"], *rows[1:]])
     make("short", rows[:5])
-    make("zero_axis", [rows[0]] + [[r[0], "0", r[2]] for r in rows[1:]])
+    # a sensor that recorded no vibration and Unix time stamps are ordinary files (issue 19)
+    make("zero_axis", [rows[0]] + [[r[0], "0", r[2]] for r in rows[1:]], True)
+    make("unix_time", [rows[0]] + [[f"17{float(r[0]):012.3f}", *r[1:]] for r in rows[1:]], True)
     make("backwards", [rows[0], *reversed(rows[1:])])
     make("slow_rate", [rows[0]] + [[f"{i / 150:.4f}", r[1], r[2]] for i, r in enumerate(rows[1:])])
     make(

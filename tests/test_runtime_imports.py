@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import ast
 import os
 import subprocess
 import sys
@@ -61,6 +62,67 @@ def test_import_loader_model_loads_no_heavy_modules() -> None:
     result = _run(code)
     assert result.returncode == 0, result.stderr
     assert result.stdout.strip() == "[]"
+
+
+#: Modules the command line must not load before a command needs them (each costs 0.05-0.6 s).
+HEAVY_FOR_THE_CLI = ("matplotlib", "control", "scipy.signal", "casadi", "sympy")
+
+
+def _loaded_after(code: str, modules: tuple[str, ...] = HEAVY_FOR_THE_CLI) -> list[str]:
+    """Which of ``modules`` are in ``sys.modules`` after running ``code`` in a fresh process."""
+    result = _run(f"{code}\nimport sys\nprint([m for m in {modules!r} if m in sys.modules])")
+    assert result.returncode == 0, result.stderr
+    return ast.literal_eval(result.stdout.strip().splitlines()[-1])
+
+
+def test_cli_import_and_help_load_no_heavy_modules() -> None:
+    assert _loaded_after("import loader_model.cli") == []
+    help_code = (
+        "import contextlib, io\n"
+        "import loader_model.cli as cli\n"
+        "with contextlib.redirect_stdout(io.StringIO()) as out:\n"
+        "    try:\n"
+        "        cli.main(['--help'])\n"
+        "    except SystemExit as stop:\n"
+        "        assert stop.code == 0\n"
+        "assert 'simulate' in out.getvalue() and 'iso2631' in out.getvalue()\n"
+    )
+    assert _loaded_after(help_code, (*HEAVY_FOR_THE_CLI, "numpy", "scipy")) == []
+
+
+def test_command_modules_import_light() -> None:
+    code = (
+        "import importlib, loader_model.cli as cli\n"
+        "[importlib.import_module(m) for m in cli.COMMANDS.values()]"
+    )
+    assert _loaded_after(code, (*HEAVY_FOR_THE_CLI, "numpy", "scipy")) == []
+    assert _loaded_after("import loader_model.commands.simulate_command") == []
+
+
+@pytest.mark.parametrize("controller", ["baseline", "skyhook"])
+def test_simulate_loads_no_plotting_control_or_scipy_signal(controller: str) -> None:
+    """The whole ``simulate`` run (no plot asked for) needs neither matplotlib, python-control
+    nor scipy.signal: the ISO 2631-1 weightings run on NumPy, a controller starts at its fixed
+    point without its python-control equivalent."""
+    code = (
+        "import contextlib, io\n"
+        "import loader_model.cli as cli\n"
+        "with contextlib.redirect_stdout(io.StringIO()) as out:\n"
+        f"    assert cli.main(['simulate', '--duration', '3', '--controller', {controller!r}]) == 0\n"
+        "assert 'a_v (paper Eq. 50)' in out.getvalue()\n"
+    )
+    assert _loaded_after(code, ("matplotlib", "control", "scipy.signal", "sympy")) == []
+
+
+def test_iso2631_evaluation_needs_no_scipy() -> None:
+    code = (
+        "import numpy as np\n"
+        "from loader_model.iso2631 import VibrationRecord, evaluate_record\n"
+        "t = np.arange(5000) / 250.0\n"  # 250 Hz: the upsampled path too
+        "record = VibrationRecord(time_s=t, axes={'z': np.sin(2 * np.pi * 4 * t)})\n"
+        "evaluate_record(record, running_rms_method='exponential')\n"
+    )
+    assert _loaded_after(code, ("scipy", "control", "matplotlib")) == []
 
 
 @pytest.mark.slow

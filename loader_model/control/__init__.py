@@ -1,9 +1,12 @@
 """Controllers (paper section 3): settings, sensors, the 1 kHz controllers and their linear
-equivalents, output-feedback LQR and the H2 / ISO 2631 gain optimisation (certified BFGS or IPOPT through
-CasADi, :func:`~loader_model.control.comfort_design.optimise_gain`).
+equivalents, output-feedback LQR and the H2 / ISO 2631 gain optimisation (certified BFGS or
+IPOPT through CasADi, :func:`~loader_model.control.comfort_design.optimise_gain`).
 
 The algorithms are generic in the plant: they take numpy matrices or python-control systems.
 """
+
+import importlib
+from typing import Any
 
 from loader_model.control.controllers import (
     CONTROLLER_NAMES,
@@ -11,13 +14,7 @@ from loader_model.control.controllers import (
     controller_state_names,
 )
 from loader_model.control.design_plant import DesignPlant
-from loader_model.control.h2_cost import h2_cost_function, h2_costs
 from loader_model.control.linear_controller import LinearController, closed_loop, linear_controller
-from loader_model.control.output_feedback import (
-    NoStabilisingGainError,
-    OutputFeedbackResult,
-    output_feedback_lqr,
-)
 from loader_model.control.sensors import SENSOR_NAMES, SensorModel, sensor_signals
 from loader_model.control.settings import (
     SETTINGS_NAMES,
@@ -51,3 +48,20 @@ __all__ = [
     "settings_vector",
     "settings_vector_for_plant",
 ]
+
+#: Names of the design modules, loaded on first access (PEP 562): they import scipy.linalg and
+#: scipy.optimize (about 0.4 s), which the simulator, importing this package, does not need.
+_LAZY_ATTRIBUTES = {
+    "h2_cost_function": "h2_cost",
+    "h2_costs": "h2_cost",
+    "NoStabilisingGainError": "output_feedback",
+    "OutputFeedbackResult": "output_feedback",
+    "output_feedback_lqr": "output_feedback",
+}
+
+
+def __getattr__(name: str) -> Any:
+    module = _LAZY_ATTRIBUTES.get(name)
+    if module is None:
+        raise AttributeError(f"module 'loader_model.control' has no attribute {name!r}")
+    return getattr(importlib.import_module(f"loader_model.control.{module}"), name)

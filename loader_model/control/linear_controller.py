@@ -26,7 +26,6 @@ from typing import Any
 
 import casadi as ca
 import numpy as np
-import scipy.linalg
 
 from loader_model.control.controllers import controller_function, controller_state_names
 from loader_model.control.sensors import SENSOR_NAMES
@@ -67,6 +66,30 @@ def _jacobians(name: str) -> ca.Function:
     )
 
 
+def _checked(settings: np.ndarray, y_sensor: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    settings = np.asarray(settings, dtype=float).ravel()
+    y0 = np.asarray(y_sensor, dtype=float).ravel()
+    if settings.shape != (len(SETTINGS_NAMES),) or y0.shape != (len(SENSOR_NAMES),):
+        raise ValueError(
+            f"settings has {settings.size} entries, y_sensor {y0.size}; "
+            f"expected {len(SETTINGS_NAMES)} and {len(SENSOR_NAMES)}"
+        )
+    return settings, y0
+
+
+def operating_state(name: str, settings: np.ndarray, y_sensor: np.ndarray) -> np.ndarray:
+    """Fixed point z0 of controller ``name`` at the constant readings ``y_sensor``.
+
+    What :func:`linear_controller` returns as ``operating_state``, without building its
+    python-control systems (for the simulator's start, which needs only z0).
+    """
+    settings, y0 = _checked(settings, y_sensor)
+    n = len(controller_state_names(name))
+    at_zero = _jacobians(name)(np.zeros(n), y0, settings)
+    a_d, free = np.asarray(at_zero[2]).reshape(n, n), np.asarray(at_zero[0]).ravel()
+    return np.linalg.solve(np.eye(n) - a_d, free) if n else np.zeros(0)
+
+
 def linear_controller(name: str, settings: np.ndarray, y_sensor: np.ndarray) -> LinearController:
     """Linearise controller ``name`` at the sensor readings ``y_sensor`` (its fixed point).
 
@@ -81,21 +104,13 @@ def linear_controller(name: str, settings: np.ndarray, y_sensor: np.ndarray) -> 
         :func:`~loader_model.control.sensors.sensor_signals` of the static plant outputs.
     """
     import control
+    import scipy.linalg  # here, not at the top: the simulator imports this package
 
-    settings = np.asarray(settings, dtype=float).ravel()
-    y0 = np.asarray(y_sensor, dtype=float).ravel()
-    if settings.shape != (len(SETTINGS_NAMES),) or y0.shape != (len(SENSOR_NAMES),):
-        raise ValueError(
-            f"settings has {settings.size} entries, y_sensor {y0.size}; "
-            f"expected {len(SETTINGS_NAMES)} and {len(SENSOR_NAMES)}"
-        )
+    settings, y0 = _checked(settings, y_sensor)
     states = list(controller_state_names(name))
     n = len(states)
-    jac = _jacobians(name)
-    at_zero = jac(np.zeros(n), y0, settings)
-    a_d, free = np.asarray(at_zero[2]).reshape(n, n), np.asarray(at_zero[0]).ravel()
-    z0 = np.linalg.solve(np.eye(n) - a_d, free) if n else np.zeros(0)
-    _, u0, a_d, b_d, c, d = (np.asarray(m, dtype=float) for m in jac(z0, y0, settings))
+    z0 = operating_state(name, settings, y0)
+    _, u0, a_d, b_d, c, d = (np.asarray(m, dtype=float) for m in _jacobians(name)(z0, y0, settings))
     m = len(SENSOR_NAMES)
     a_d, b_d = a_d.reshape(n, n), b_d.reshape(n, m)
     c, d = c.reshape(1, n), d.reshape(1, m)

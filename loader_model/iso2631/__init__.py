@@ -16,6 +16,7 @@ from __future__ import annotations
 from loader_model.iso2631.evaluation import (
     COMFORT_K_FACTORS,
     DEFAULT_AXIS_WEIGHTINGS,
+    NO_VIBRATION_RATIO,
     PAPER_K_FACTORS,
     AxisEvaluation,
     RecordEvaluation,
@@ -93,6 +94,7 @@ __all__ = [
     "MAGNITUDE_TOLERANCE_DB",
     "MINIMUM_SAMPLE_RATE_HZ",
     "NOMINAL_BAND_HZ",
+    "NO_VIBRATION_RATIO",
     "PAPER_K_FACTORS",
     "PHASE_TOLERANCE_DEG",
     "PLOT_SUFFIXES",

@@ -38,6 +38,7 @@ __all__ = [
     "COMFORT_K_FACTORS",
     "DEFAULT_AXIS_WEIGHTINGS",
     "MAX_K_FACTOR",
+    "NO_VIBRATION_RATIO",
     "PAPER_K_FACTORS",
     "AxisEvaluation",
     "RecordEvaluation",
@@ -48,6 +49,12 @@ __all__ = [
 
 #: Largest accepted k factor (ISO 2631-1 k factors lie between 0.2 and 1.4).
 MAX_K_FACTOR = 2.0
+#: An axis whose weighted r.m.s. is at most this fraction of its largest |sample| carries no
+#: vibration (an all-zero channel, or a constant one such as gravity alone, which the
+#: band-limiting high-pass removes down to rounding, about 1e-15 of it): its values are 0 and its
+#: crest factor is undefined. Vibration of 1e-9 of a 1 g offset (1e-8 m/s²) is far below the
+#: noise of any accelerometer (about 1e-5 m/s²).
+NO_VIBRATION_RATIO = 1e-9
 #: Weighting per axis, seated person, seat surface (ISO 2631-1 Table 1 / 7.2.2, 8.2.2).
 DEFAULT_AXIS_WEIGHTINGS: Mapping[str, str] = MappingProxyType(
     {"x": "Wd", "y": "Wd", "z": "Wk", "roll": "We", "pitch": "We", "yaw": "We"}
@@ -64,7 +71,11 @@ PAPER_K_FACTORS: Mapping[str, float] = MappingProxyType(
 
 @dataclass(frozen=True)
 class AxisEvaluation:
-    """ISO 2631-1 values of one axis; accelerations in ``unit``, VDVs in ``unit`` x s^0.25."""
+    """ISO 2631-1 values of one axis; accelerations in ``unit``, VDVs in ``unit`` x s^0.25.
+
+    An axis without vibration (see :data:`NO_VIBRATION_RATIO`) has every value 0 and
+    ``crest_factor`` NaN (undefined); :attr:`has_vibration` tells it apart.
+    """
 
     axis: str
     weighting: str
@@ -75,6 +86,11 @@ class AxisEvaluation:
     mtvv: float
     vdv: float
     estimated_vdv: float
+
+    @property
+    def has_vibration(self) -> bool:
+        """False for an axis without vibration (a_w = 0, crest factor undefined)."""
+        return self.weighted_rms > 0.0
 
 
 @dataclass(frozen=True)
@@ -124,7 +140,9 @@ def evaluate_record(
     Returns
     -------
     RecordEvaluation
-        Values per axis, in the record's axis order, and a_v of Eq. 50.
+        Values per axis, in the record's axis order, and a_v of Eq. 50. An axis without
+        vibration (an all-zero or constant channel, :data:`NO_VIBRATION_RATIO`) is evaluated
+        with a_w, MTVV, VDV and eVDV 0 and an undefined (NaN) crest factor.
     """
     for what, overrides in (("weightings", weightings), ("k_factors", k_factors)):
         for axis in overrides or {}:
@@ -152,12 +170,9 @@ def evaluate_record(
             )
         weighted = weight_acceleration(acceleration, record.sample_rate_hz, weighting)
         rms = weighted_rms(weighted)
-        if not rms > 1e-9 * float(np.max(np.abs(acceleration))):  # zero up to rounding
-            raise ValueError(
-                f"axis {axis!r} carries no vibration (weighted r.m.s. 0: an all-zero or constant "
-                "channel, e.g. a disconnected sensor); its crest factor is undefined. Remove the "
-                "axis or check the sensor"
-            )
+        if not rms > NO_VIBRATION_RATIO * float(np.max(np.abs(acceleration))):
+            weighted = np.zeros_like(weighted)  # zero up to rounding: no vibration
+            rms = 0.0
         evaluations.append(
             AxisEvaluation(
                 axis=axis,
@@ -226,7 +241,7 @@ def format_evaluation(
             item.weighting,
             f"{item.k_factor:.2f}",
             f"{item.weighted_rms:.4g}",
-            f"{item.crest_factor:.3g}",
+            f"{item.crest_factor:.3g}" if item.has_vibration else "—",
             f"{item.mtvv:.4g}",
             f"{item.vdv:.4g}",
             f"{item.estimated_vdv:.4g}",
@@ -246,6 +261,12 @@ def format_evaluation(
                 str(cell).ljust(width) for cell, width in zip(row, widths, strict=True)
             ).rstrip()
         )
+    for item in evaluation.axes:
+        if not item.has_vibration:
+            lines.append(
+                f"{item.axis}: no vibration (an all-zero or constant channel: a_w = 0); crest "
+                "factor undefined (—)"
+            )
     lines.append(f"vibration total value a_v (paper Eq. 50) = {evaluation.total_m_s2:.4g} m/s²")
     if assessment is not None:
         lines.append(

@@ -5,9 +5,9 @@ Design (per weighting and sample rate ``fs``, cached):
 1. **Matched poles and zeros.** Every pole and finite zero ``p`` of the exact Annex A.2 factors
    (:mod:`loader_model.iso2631.weightings`) maps to ``exp(p / fs)``; the double zero of the
    band-limiting high-pass lands exactly on ``z = 1`` (no response to a constant offset). Zeros
-   at infinity (the relative degree) are placed at ``z = 0``. This part M(z) is exact in pole
-   and zero position, so it has no frequency warping, unlike the bilinear transform, whose 1/f
-   slopes end up several dB wrong near ``fs/2``.
+   at infinity (the relative degree) are placed at ``z = 0``, one second-order section per
+   factor. This part M(z) is exact in pole and zero position, so it has no frequency warping,
+   unlike the bilinear transform, whose 1/f slopes end up several dB wrong near ``fs/2``.
 2. **Causal FIR correction.** A 16-tap FIR ``C(z)`` is fitted so that ``C · M / W - 1`` is
    small in magnitude and phase over the band from half its lowest frequency to
    ``min(0.4 fs,`` its highest frequency ``)``, by linear least squares followed by Lawson's
@@ -28,6 +28,9 @@ therefore weights records sampled below 1 kHz at an integer multiple of their ra
 (:mod:`loader_model.iso2631.upsampling`): at 200 Hz, the lowest accepted rate, every weighting
 then reads sines of 0.5-31.5 Hz (Wf: 0.1-4 Hz) within 0.05 % and shocks within 0.6 %. At Wf's
 lowest rate of 10 Hz the top of its band (4 Hz, 0.4 fs) reads 1.4 % low, within ISO 8041.
+
+The filters run on NumPy (:mod:`loader_model.iso2631._digital`), not scipy.signal, whose import
+alone took longer than a whole ``loader-model simulate``.
 """
 
 from __future__ import annotations
@@ -39,9 +42,17 @@ from dataclasses import dataclass
 from types import MappingProxyType
 
 import numpy as np
-import scipy.signal
 
 from loader_model.iso2631._checks import as_positive, as_signal, shown
+from loader_model.iso2631._digital import (
+    dc_gain,
+    fir_filter,
+    fir_response,
+    least_squares,
+    sos_filter,
+    sos_response,
+    sos_steady_state,
+)
 from loader_model.iso2631.upsampling import upsampling_factor, weight_upsampled
 from loader_model.iso2631.weightings import (
     NOMINAL_BAND_HZ,
@@ -111,9 +122,10 @@ class DiscreteWeighting:
     def frequency_response(self, frequency_hz: np.ndarray | float) -> np.ndarray:
         """Complex response of the discrete filter at ``frequency_hz`` (Hz, below fs/2)."""
         frequency = np.atleast_1d(np.asarray(frequency_hz, dtype=float))
-        _, sos_response = scipy.signal.sosfreqz(self.sos, worN=frequency, fs=self.sample_rate_hz)
-        _, fir_response = scipy.signal.freqz(self.fir, 1.0, worN=frequency, fs=self.sample_rate_hz)
-        return np.reshape(sos_response * fir_response, np.shape(frequency_hz))
+        response = sos_response(self.sos, frequency, self.sample_rate_hz) * fir_response(
+            self.fir, frequency, self.sample_rate_hz
+        )
+        return np.reshape(response, np.shape(frequency_hz))
 
     def apply(self, acceleration: np.ndarray, *, initial_state: str = "steady") -> np.ndarray:
         """Weighted acceleration a_w(t) of ISO 2631-1 6.3 for samples at :attr:`sample_rate_hz`.
@@ -132,15 +144,18 @@ class DiscreteWeighting:
             The weighted acceleration, same length and unit.
         """
         signal = self.check(acceleration, initial_state)
-        sos = np.array(self.sos)  # scipy's sosfilt needs a writable copy of the read-only array
-        if initial_state == "rest":
-            return scipy.signal.lfilter(self.fir, 1.0, scipy.signal.sosfilt(sos, signal))
-        sos_state = scipy.signal.sosfilt_zi(sos) * signal[0]
-        intermediate, _ = scipy.signal.sosfilt(sos, signal, zi=sos_state)
-        sos_dc_gain = np.prod(np.sum(sos[:, :3], axis=1) / np.sum(sos[:, 3:], axis=1))
-        fir_state = scipy.signal.lfilter_zi(self.fir, 1.0) * sos_dc_gain * signal[0]
-        weighted, _ = scipy.signal.lfilter(self.fir, 1.0, intermediate, zi=fir_state)
+        sos_state, fir_history = self.initial_state(signal[0], initial_state == "steady")
+        intermediate, _ = sos_filter(self.sos, signal, sos_state)
+        weighted, _ = fir_filter(self.fir, intermediate, fir_history)
         return weighted
+
+    def initial_state(self, value: float, steady: bool) -> tuple[np.ndarray, np.ndarray]:
+        """States of the sections and the FIR's input history: at rest, or (``steady``) in
+        the steady state of the constant input ``value``."""
+        if not steady:
+            return np.zeros(2 * self.sos.shape[0]), np.zeros(self.fir.size - 1)
+        history = np.full(self.fir.size - 1, dc_gain(self.sos) * value)
+        return sos_steady_state(self.sos, value), history
 
     def check(self, acceleration: np.ndarray, initial_state: str) -> np.ndarray:
         """Return the checked signal; refuse a bad initial state or a record that is too short."""
@@ -198,39 +213,36 @@ def design_weighting_filter(weighting: str, sample_rate_hz: float) -> DiscreteWe
     return _design(weighting, _check_sample_rate(weighting, sample_rate_hz))
 
 
+def _matched_sections(weighting: str, sample_rate_hz: float) -> np.ndarray:
+    """One second-order section per Annex A.2 factor: its poles and finite zeros ``p`` mapped to
+    ``exp(p / fs)``, its zeros at infinity to ``z = 0``; unit gain (rows b0, b1, b2, 1, a1, a2)."""
+    rows = []
+    for section in weighting_sections(weighting):
+        poles = np.exp(np.roots(section.denominator) / sample_rate_hz)
+        zeros = np.exp(np.roots(section.numerator) / sample_rate_hz)
+        zeros = np.concatenate([zeros, np.zeros(poles.size - zeros.size)])
+        rows.append(np.concatenate([np.poly(zeros).real, np.poly(poles).real]))
+    return np.array(rows)
+
+
 @functools.lru_cache(maxsize=64)
 def _design(weighting: str, sample_rate_hz: float) -> DiscreteWeighting:
-    sample_time_s = 1.0 / sample_rate_hz
-    zeros: list[complex] = []
-    poles: list[complex] = []
-    for section in weighting_sections(weighting):
-        zeros.extend(np.roots(section.numerator))
-        poles.extend(np.roots(section.denominator))
-    digital_zeros = np.concatenate(
-        [
-            np.exp(np.asarray(zeros, dtype=complex) * sample_time_s),
-            np.zeros(len(poles) - len(zeros)),
-        ]
-    )
-    digital_poles = np.exp(np.asarray(poles, dtype=complex) * sample_time_s)
     band_low_hz, band_high_hz = NOMINAL_BAND_HZ[weighting]
     fit_high_hz = min(sample_rate_hz / SAMPLE_RATE_TO_BAND_RATIO, band_high_hz)
     frequency_hz = np.geomspace(0.5 * band_low_hz, fit_high_hz, _FIT_POINTS)
     reference_hz = math.sqrt(band_low_hz * band_high_hz)
 
-    _, matched = scipy.signal.freqz_zpk(
-        digital_zeros, digital_poles, 1.0, worN=[reference_hz], fs=sample_rate_hz
-    )
-    gain = float(np.abs(weighting_response(weighting, reference_hz) / matched[0]))
-    sos = scipy.signal.zpk2sos(digital_zeros, digital_poles, gain)
-    _, matched = scipy.signal.sosfreqz(sos, worN=frequency_hz, fs=sample_rate_hz)
+    sos = _matched_sections(weighting, sample_rate_hz)
+    unit = sos_response(sos, np.array([reference_hz]), sample_rate_hz)[0]
+    sos[0, :3] *= float(np.abs(weighting_response(weighting, reference_hz) / unit))
+    matched = sos_response(sos, frequency_hz, sample_rate_hz)
 
     # Rows of the fit, linear in the taps c: in band the relative error (M z^-n / W) c - 1; above
     # it, up to fs/2, the absolute error (M z^-n c - W) / max|W| with a small fixed weight, which
     # keeps the gain of the FIR bounded where the band fit does not constrain it.
     guard_hz = np.linspace(fit_high_hz, 0.49 * sample_rate_hz, _GUARD_POINTS + 1)[1:]
     peak = float(np.max(np.abs(weighting_response(weighting, frequency_hz))))
-    _, matched_guard = scipy.signal.sosfreqz(sos, worN=guard_hz, fs=sample_rate_hz)
+    matched_guard = sos_response(sos, guard_hz, sample_rate_hz)
     columns = (matched / weighting_response(weighting, frequency_hz))[:, None] * _delays(
         frequency_hz, sample_rate_hz
     )
@@ -242,20 +254,17 @@ def _design(weighting: str, sample_rate_hz: float) -> DiscreteWeighting:
         root_weights = np.sqrt(weights)[:, None]
         stacked = np.vstack([columns * root_weights, guard_columns * guard_weight])
         target = np.concatenate([root_weights[:, 0], guard_target * guard_weight])
-        fir, *_ = np.linalg.lstsq(
-            np.vstack([stacked.real, stacked.imag]),
-            np.concatenate([target.real, target.imag]),
-            rcond=None,
+        fir = least_squares(
+            np.vstack([stacked.real, stacked.imag]), np.concatenate([target.real, target.imag])
         )
-        weights = weights * np.abs(columns @ fir - 1.0)
+        weights = weights * np.abs(np.einsum("ij,j->i", columns, fir) - 1.0)  # no BLAS threads
         weights /= np.sum(weights)
 
     check_hz = np.geomspace(band_low_hz, band_high_hz, 4 * _FIT_POINTS)
-    _, sos_check = scipy.signal.sosfreqz(sos, worN=check_hz, fs=sample_rate_hz)
-    _, fir_check = scipy.signal.freqz(fir, 1.0, worN=check_hz, fs=sample_rate_hz)
-    magnitude_db, phase_deg = _errors(
-        sos_check * fir_check / weighting_response(weighting, check_hz)
+    check = sos_response(sos, check_hz, sample_rate_hz) * fir_response(
+        fir, check_hz, sample_rate_hz
     )
+    magnitude_db, phase_deg = _errors(check / weighting_response(weighting, check_hz))
     if magnitude_db > MAGNITUDE_TOLERANCE_DB or phase_deg > PHASE_TOLERANCE_DEG:
         raise ValueError(  # only reachable far above any practical rate (checked up to 1 MHz)
             f"sample_rate_hz {sample_rate_hz:g} Hz gives a numerically inaccurate {weighting} "
@@ -284,8 +293,8 @@ def weight_acceleration(
 ) -> np.ndarray:
     """Frequency-weighted acceleration a_w(t) (ISO 2631-1 6.3; the paper's a_wi = W_i(a_i)).
 
-    Below 1 kHz the record is weighted at an integer multiple of its rate of at least 1 kHz
-    and taken back to its own samples (:mod:`loader_model.iso2631.upsampling`): at 200 Hz this
+    Below 1 kHz (less 100 ppm) the record is weighted at an integer multiple of its rate of at
+    least 1 kHz and taken back to its own samples (:mod:`loader_model.iso2631.upsampling`): at 200 Hz this
     keeps a_w within 0.1 % of exact causal filtering where the direct design alone is up to
     6.3 % high (Wj).
 

@@ -23,7 +23,6 @@ __all__ = [
     "AXES",
     "CSV_BLOCK_ROWS",
     "MAX_ACCELERATION",
-    "MAX_TIME_S",
     "ROTATIONAL_AXES",
     "TIME_JITTER_TOLERANCE",
     "VibrationRecord",
@@ -37,18 +36,16 @@ AXES = ("x", "y", "z", "roll", "pitch", "yaw")
 #: Axes measured as angular acceleration in rad/s².
 ROTATIONAL_AXES = frozenset({"roll", "pitch", "yaw"})
 #: Largest accepted deviation of a sampling interval from the mean interval, as a fraction of it
-#: (times rounded when written to CSV stay well inside it).
+#: (times rounded when written to CSV stay well inside it). The float64 resolution of the time
+#: values is allowed for on top (see :class:`VibrationRecord`).
 TIME_JITTER_TOLERANCE = 0.01
 #: Largest plausible |acceleration| in m/s² or rad/s² (about 200 g).
 MAX_ACCELERATION = 2000.0
-#: Largest plausible |time| in s (about 32 years).
-MAX_TIME_S = 1e9
 #: Rows parsed at a time by :func:`read_vibration_csv`.
 CSV_BLOCK_ROWS = 65536
-_LIMIT_REASONS = {
-    False: "about 200 g; whole-body vibration stays below 10 g and shocks on a seat below 50 g",
-    True: "about 32 years; times are seconds from the start of a measurement",
-}
+_ACCELERATION_REASON = (
+    "about 200 g; whole-body vibration stays below 10 g and shocks on a seat below 50 g"
+)
 
 
 def check_axis_name(axis: object, what: str = "axis") -> str:
@@ -63,6 +60,43 @@ def axis_unit(axis: str) -> str:
     return "rad/s²" if check_axis_name(axis) in ROTATIONAL_AXES else "m/s²"
 
 
+def _check_spacing(time_s: np.ndarray) -> None:
+    """Refuse times that are not strictly increasing with a constant, resolvable interval."""
+    with np.errstate(over="ignore"):  # an infinite span is refused below, by name
+        interval_s = np.diff(time_s)
+    if np.any(interval_s <= 0.0):
+        index = int(np.flatnonzero(interval_s <= 0.0)[0])
+        raise ValueError(
+            f"time_s must be strictly increasing; got {float(time_s[index])!r} then "
+            f"{float(time_s[index + 1])!r} at index {index + 1}"
+        )
+    span_s = float(time_s[-1]) - float(time_s[0])
+    if not math.isfinite(span_s):
+        raise ValueError(f"time_s must span a finite time; got {time_s[0]:g} s to {time_s[-1]:g} s")
+    mean_interval_s = span_s / (time_s.size - 1)
+    # Each stamp is the nearest float64 to its time, within half the spacing of floats at
+    # its magnitude, so an interval is known to within one spacing at the largest |t|.
+    largest_s = float(np.max(np.abs(time_s)))
+    resolution_s = float(np.spacing(largest_s))
+    if resolution_s > TIME_JITTER_TOLERANCE * mean_interval_s:
+        raise ValueError(
+            f"time_s cannot resolve its sampling interval: times of {largest_s:.6g} s are "
+            f"stored to {resolution_s:.3g} s (float64), more than {TIME_JITTER_TOLERANCE:.0%} "
+            f"of the mean interval {mean_interval_s:.6g} s; allowed: a resolution of at most "
+            f"{TIME_JITTER_TOLERANCE:.0%} of the interval (write the times relative to the "
+            "start of the record)"
+        )
+    deviation_s = np.abs(interval_s - mean_interval_s)
+    allowed_s = TIME_JITTER_TOLERANCE * mean_interval_s + resolution_s
+    if np.max(deviation_s) > allowed_s:
+        index = int(np.argmax(deviation_s))
+        raise ValueError(
+            f"time_s must be uniformly sampled (intervals within "
+            f"{TIME_JITTER_TOLERANCE:.0%} of the mean {mean_interval_s:.6g} s); got an "
+            f"interval of {interval_s[index]:.6g} s at index {index + 1}"
+        )
+
+
 @dataclass(frozen=True)
 class VibrationRecord:
     """Uniformly sampled accelerations of several axes (ISO 2631-1 clause 5).
@@ -70,8 +104,14 @@ class VibrationRecord:
     Parameters
     ----------
     time_s : array_like
-        Sample times in s, strictly increasing with constant interval (within
-        :data:`TIME_JITTER_TOLERANCE`), at least 2 samples.
+        Sample times in s, at least 2, finite and strictly increasing with a constant interval
+        (within :data:`TIME_JITTER_TOLERANCE` of the mean interval, plus the float64
+        resolution of the times). Any origin is accepted, e.g. Unix time stamps: only the
+        spacing is used (the sample rate from the span ``t_last - t_first``), so a record
+        evaluates as the same record with ``time_s - time_s[0]``. A float64 time stamp t is
+        resolved to ``numpy.spacing(t)`` (2.4e-7 s at 1.7e9 s, a Unix time of 2023); times
+        whose resolution exceeds 1 % of the sampling interval (at that magnitude: sampling
+        faster than about 42 kHz) are refused, since their spacing cannot be checked.
     axes : mapping of str to array_like
         Axis name (one of :data:`AXES`) to acceleration samples in m/s² or rad/s², each finite and
         as long as ``time_s``. At least one axis.
@@ -86,27 +126,7 @@ class VibrationRecord:
         time_s = as_signal(self.time_s, "time_s").copy()
         if time_s.size < 2:
             raise ValueError(f"time_s must have at least 2 samples; got {time_s.size}")
-        if np.max(np.abs(time_s)) > MAX_TIME_S:
-            raise ValueError(
-                f"time_s must lie within +-{MAX_TIME_S:g} s ({_LIMIT_REASONS[True]}); got "
-                f"{time_s[np.argmax(np.abs(time_s))]:g} s"
-            )
-        interval_s = np.diff(time_s)
-        if np.any(interval_s <= 0.0):
-            index = int(np.flatnonzero(interval_s <= 0.0)[0])
-            raise ValueError(
-                f"time_s must be strictly increasing; got {time_s[index]:.9g} then "
-                f"{time_s[index + 1]:.9g} at index {index + 1}"
-            )
-        mean_interval_s = (time_s[-1] - time_s[0]) / (time_s.size - 1)
-        deviation = np.abs(interval_s - mean_interval_s) / mean_interval_s
-        if np.max(deviation) > TIME_JITTER_TOLERANCE:
-            index = int(np.argmax(deviation))
-            raise ValueError(
-                f"time_s must be uniformly sampled (intervals within "
-                f"{TIME_JITTER_TOLERANCE:.0%} of the mean {mean_interval_s:.6g} s); got an "
-                f"interval of {interval_s[index]:.6g} s at index {index + 1}"
-            )
+        _check_spacing(time_s)
         if not isinstance(self.axes, Mapping) or not self.axes:
             raise ValueError(f"axes must map at least one of {AXES} to samples; got {self.axes!r}")
         axes: dict[str, np.ndarray] = {}
@@ -118,7 +138,7 @@ class VibrationRecord:
                 raise ValueError(
                     f"axis {name!r} = {column[too_large[0]]:g} {axis_unit(name)} at index "
                     f"{too_large[0]} is implausible; allowed: |value| <= {MAX_ACCELERATION:g} "
-                    f"({_LIMIT_REASONS[False]})"
+                    f"({_ACCELERATION_REASON})"
                 )
             if column.size != time_s.size:
                 raise ValueError(
@@ -214,14 +234,15 @@ def _parse_block(name: str, header: list[str], block: list[tuple[int, str]]) -> 
 
 def _check_magnitudes(name: str, header: list[str], data: np.ndarray, first_line: int) -> None:
     for index, column in enumerate(header):
-        limit = MAX_TIME_S if column == "time" else MAX_ACCELERATION
-        bad = np.flatnonzero(np.abs(data[:, index]) > limit)
+        if column == "time":
+            continue  # any origin (e.g. Unix time stamps): VibrationRecord checks the spacing
+        bad = np.flatnonzero(np.abs(data[:, index]) > MAX_ACCELERATION)
         if bad.size:
-            unit = "s" if column == "time" else axis_unit(column)
+            unit = axis_unit(column)
             raise ValueError(
                 f"{name}: column {column!r} = {data[bad[0], index]:g} {unit} on data row "
-                f"{first_line + bad[0]} is implausible; allowed: |value| <= {limit:g} {unit} "
-                f"({_LIMIT_REASONS[column == 'time']})"
+                f"{first_line + bad[0]} is implausible; allowed: |value| <= "
+                f"{MAX_ACCELERATION:g} {unit} ({_ACCELERATION_REASON})"
             )
 
 
@@ -232,8 +253,8 @@ def read_vibration_csv(path: str | Path) -> VibrationRecord:
     must be UTF-8 text, with or without a byte-order mark, with ``\n`` or ``\r\n`` line
     endings (:func:`loader_model.files.iter_lines`). It is read in blocks of
     :data:`CSV_BLOCK_ROWS` rows, so memory stays at about 2 x 8 bytes per value of the file.
-    Values beyond :data:`MAX_ACCELERATION` (accelerations) or :data:`MAX_TIME_S` (time) are
-    refused as implausible.
+    Accelerations beyond :data:`MAX_ACCELERATION` are refused as implausible; the time column
+    may have any origin (e.g. Unix time stamps), see :class:`VibrationRecord`.
 
     Parameters
     ----------

@@ -67,7 +67,7 @@ def controller_setup(
     settings : loader_model.control.settings.ControllerSettings, optional
         Default: the shipped Table 3 settings.
     """
-    from loader_model.control.linear_controller import linear_controller
+    from loader_model.control.linear_controller import operating_state
     from loader_model.control.sensors import sensor_signals
     from loader_model.control.settings import default_settings, settings_vector_for_plant
     from loader_model.plant.equilibrium import static_state
@@ -80,5 +80,5 @@ def controller_setup(
     outputs = np.asarray(
         plant_function()(state, command, np.zeros(11), params)[1], dtype=float
     ).ravel()
-    fixed = linear_controller(RIDE_CONTROLLERS[name], vector, sensor_signals(outputs))
-    return vector, np.asarray(fixed.operating_state, dtype=float).ravel()
+    fixed = operating_state(RIDE_CONTROLLERS[name], vector, sensor_signals(outputs))
+    return vector, np.asarray(fixed, dtype=float).ravel()
