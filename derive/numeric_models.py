@@ -56,7 +56,7 @@ def _rounded(matrix: Any) -> list[list[float]]:
 def render_numeric_models(input_hash: str) -> str:
     """Evaluate the default loader's linear models with the runtime and render the module."""
     from loader_model import parameters
-    from loader_model.dynamics import LoaderDynamics
+    from loader_model.vehicle.dynamics import LoaderDynamics
 
     models = {}
     for case in parameters.LOAD_CASES:

@@ -1,7 +1,7 @@
 """Symbols of the loader model and the order the generated functions expect.
 
 This module owns the model's structure: the generalised coordinates p (paper Eq. 26), the inputs
-and the parameter vector. ``generated/`` exports these orders and ``loader_model.parameters`` maps
+and the parameter vector. ``generated/`` exports these orders and ``loader_model.parameters.sets`` maps
 named parameter sets onto them; a test proves the two agree.
 
 Frames and signs (DESIGN.md, "The model"): global frame at the chassis centre of gravity H at static

@@ -16,8 +16,8 @@ from typing import Any
 __version__ = "0.1.0"
 
 _LAZY_ATTRIBUTES = {
-    "LoaderDynamics": "loader_model.dynamics",
-    "PARAMETER_NAMES": "loader_model.dynamics",
+    "LoaderDynamics": "loader_model.vehicle.dynamics",
+    "PARAMETER_NAMES": "loader_model.vehicle.dynamics",
 }
 
 __all__ = ["PARAMETER_NAMES", "LoaderDynamics", "__version__"]

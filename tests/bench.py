@@ -56,7 +56,7 @@ def main() -> int:
     _report("make regenerate (goal <= 5 s)", regenerate, python_start, unit="s")
     bench_startup.main()
 
-    from loader_model.dynamics import LoaderDynamics
+    from loader_model.vehicle.dynamics import LoaderDynamics
 
     model = LoaderDynamics.from_parameters()
     p, pd = np.full(4, 1e-3), np.full(4, 1e-2)

@@ -21,7 +21,7 @@ from __future__ import annotations
 import control
 import numpy as np
 
-from loader_model.dynamics import LoaderDynamics
+from loader_model.vehicle.dynamics import LoaderDynamics
 
 G_M_S2 = 9.81
 PRESSURE_NORM_PA = 100e5

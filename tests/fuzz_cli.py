@@ -31,8 +31,8 @@ from pathlib import Path
 import numpy as np
 
 from loader_model.cli import main
-from loader_model.parameter_schema import BucketLoad, LoaderParameters
-from loader_model.parameter_toml import iter_leaves, leaf_metadata
+from loader_model.parameters.schema import BucketLoad, LoaderParameters
+from loader_model.parameters.toml_format import iter_leaves, leaf_metadata
 from tests.mutations import (
     BAD_VALUES,
     LOAD_TEXT,
@@ -355,9 +355,9 @@ def _arrays(result: object) -> list[object]:
 
 def api_cases() -> list[tuple[str, str]]:
     """(argument, outcome) of every model parameter and method argument with bad values."""
-    from loader_model.dynamics import LoaderDynamics
-    from loader_model.model_parameter_checks import MODEL_PARAMETER_RANGES
-    from loader_model.parameters import bucket_load, default_loader, model_parameter_values
+    from loader_model.parameters.model_checks import MODEL_PARAMETER_RANGES
+    from loader_model.parameters.sets import bucket_load, default_loader, model_parameter_values
+    from loader_model.vehicle.dynamics import LoaderDynamics
 
     good = model_parameter_values(default_loader(), bucket_load("empty"))
     model = LoaderDynamics(good)

@@ -16,8 +16,8 @@ from pathlib import Path
 
 import numpy as np
 
-from loader_model.parameter_schema import BucketLoad, LoaderParameters
-from loader_model.parameter_toml import iter_leaves
+from loader_model.parameters.schema import BucketLoad, LoaderParameters
+from loader_model.parameters.toml_format import iter_leaves
 
 LOADER_TEXT = (
     resources.files("loader_model")

@@ -1,4 +1,4 @@
-"""Tests of loader_model.calibration: recovery of known parameters from a model's own modes.
+"""Tests of loader_model.modal.calibration: recovery of known parameters from a model's own modes.
 
 The synthetic model has the structure of DESIGN.md "The model" (Eq. 32-34 with errata 2, 5, 6):
 a chassis on two tyre axles and a boom on a hydraulic spring, written out here independently of
@@ -12,8 +12,8 @@ from collections.abc import Mapping
 import numpy as np
 import pytest
 
-from loader_model.calibration import calibrate, modal_residuals
-from loader_model.modal import TABLE_1, ModalTable, modal_analysis
+from loader_model.modal.calibration import calibrate, modal_residuals
+from loader_model.modal.modes import TABLE_1, ModalTable, modal_analysis
 
 COORDINATES = ("x_H", "y_H", "theta_1", "theta_2")
 FIXED = {

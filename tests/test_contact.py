@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import loader_model_generated as generated
-from loader_model.dynamics import LoaderDynamics
+from loader_model.vehicle.dynamics import LoaderDynamics
 
 WHEEL_RADIUS_M = 0.42  # 12-16.5 skid-steer tyre
 BOARD_WIDTH_M = 0.14  # a 2x6 plank laid flat: 38 mm x 140 mm (the paper's "4 cm tall" boards)

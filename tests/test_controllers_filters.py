@@ -17,7 +17,7 @@ import pytest
 
 from loader_model.control.filters import highpass_step, semi_integrator_step
 from loader_model.control.settings import default_settings, load_settings
-from loader_model.parameters import default_loader
+from loader_model.parameters.sets import default_loader
 
 T = 1e-3
 N = 3000

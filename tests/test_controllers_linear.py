@@ -36,7 +36,7 @@ from loader_model.control import (
     sensor_signals,
     settings_vector_for_plant,
 )
-from loader_model.parameters import bucket_load
+from loader_model.parameters.sets import bucket_load
 from loader_model.plant.equilibrium import static_state
 from loader_model.plant.linear import linearise_plant
 from loader_model.plant.plant import plant_function

@@ -23,7 +23,7 @@ from loader_model.control import (
     sensor_signals,
     settings_vector_for_plant,
 )
-from loader_model.parameters import bucket_load
+from loader_model.parameters.sets import bucket_load
 from loader_model.plant.equilibrium import static_state
 from loader_model.plant.plant import EXOGENOUS_NAMES, plant_function
 from loader_model.plant.plant_parameters import plant_parameter_vector

@@ -7,14 +7,14 @@ from dataclasses import replace as dc_replace
 
 import pytest
 
-from loader_model.cylinder import (
+from loader_model.parameters.schema import CylinderParameters, HydraulicParameters
+from loader_model.parameters.sets import default_loader
+from loader_model.vehicle.cylinder import (
     area_ratio,
     chamber_volumes_m3,
     hydraulic_stiffness_n_per_m,
     piston_position_m,
 )
-from loader_model.parameter_schema import CylinderParameters, HydraulicParameters
-from loader_model.parameters import default_loader
 
 
 @pytest.fixture

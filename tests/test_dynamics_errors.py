@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from loader_model.dynamics import LoaderDynamics
+from loader_model.vehicle.dynamics import LoaderDynamics
 
 
 @pytest.fixture

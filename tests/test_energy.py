@@ -14,7 +14,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 import loader_model_generated as generated
-from loader_model.dynamics import LoaderDynamics
+from loader_model.vehicle.dynamics import LoaderDynamics
 
 K_EQ_N_PER_M = 2.0e7  # hydraulic spring of the lift cylinders (order of Eq. 28 for this loader)
 

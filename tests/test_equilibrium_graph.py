@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import loader_model_generated as generated
-from loader_model.dynamics import LoaderDynamics
+from loader_model.vehicle.dynamics import LoaderDynamics
 
 NAMES = list(generated.PARAMETER_NAMES)
 G = 9.81

@@ -13,8 +13,8 @@ import pytest
 import scipy.io
 
 from loader_model.cli import main
-from loader_model.dynamics import OUTPUT_NAMES, STATE_NAMES, LoaderDynamics
-from loader_model.export import check_output_path, write_atomically
+from loader_model.io.export import check_output_path, write_atomically
+from loader_model.vehicle.dynamics import OUTPUT_NAMES, STATE_NAMES, LoaderDynamics
 
 
 @pytest.fixture

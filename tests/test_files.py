@@ -9,9 +9,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from loader_model.files import check_readable_file, iter_lines, read_text
+from loader_model.io.files import check_readable_file, iter_lines, read_text
 from loader_model.iso2631 import read_vibration_csv
-from loader_model.parameters import (
+from loader_model.parameters.sets import (
     bucket_load,
     default_loader,
     load_bucket_load,

@@ -114,7 +114,7 @@ def test_closed_loop_fmu_reproduces_the_sampled_loop(
 ) -> None:
     """The controller sampled by time events in the FMU against the project's discrete loop."""
     from loader_model.control.settings import default_settings, settings_vector_for_plant
-    from loader_model.parameters import bucket_load
+    from loader_model.parameters.sets import bucket_load
 
     settings = settings_vector_for_plant(
         default_settings(), params, bucket_load("empty").pressure_normalisation

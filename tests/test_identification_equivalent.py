@@ -7,9 +7,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from loader_model.dynamics import LoaderDynamics
 from loader_model.identification import EquivalentCylinder
-from loader_model.parameters import bucket_load, default_loader
+from loader_model.parameters.sets import bucket_load, default_loader
+from loader_model.vehicle.dynamics import LoaderDynamics
 
 
 @pytest.mark.parametrize("case", ["empty", "full"])

@@ -118,7 +118,7 @@ def test_boom_row_has_no_chassis_translation_in_it() -> None:
 
 
 def _params(mass: float) -> np.ndarray:
-    from loader_model.parameters import bucket_load, default_loader, model_parameter_values
+    from loader_model.parameters.sets import bucket_load, default_loader, model_parameter_values
 
     full = bucket_load("full")
     load = dataclasses.replace(full, mass=mass, inertia=full.inertia * mass / full.mass)

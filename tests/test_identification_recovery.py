@@ -82,7 +82,7 @@ def _relative(values: np.ndarray, truth: np.ndarray) -> np.ndarray:
 
 
 def test_record_starts_in_the_plants_static_equilibrium(clean: SyntheticRecording) -> None:
-    from loader_model.parameters import bucket_load, default_loader
+    from loader_model.parameters.sets import bucket_load, default_loader
     from loader_model.plant.equilibrium import static_state
     from loader_model.plant.plant_parameters import plant_parameter_vector
 

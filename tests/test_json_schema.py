@@ -11,8 +11,8 @@ from pathlib import Path
 import jsonschema
 import pytest
 
-from loader_model.json_schema import SCHEMA_FILES, schema_text
-from loader_model.parameter_schema import BucketLoad, LoaderParameters
+from loader_model.parameters.json_schema import SCHEMA_FILES, schema_text
+from loader_model.parameters.schema import BucketLoad, LoaderParameters
 
 DATA = resources.files("loader_model").joinpath("data")
 SHIPPED = {
@@ -24,7 +24,9 @@ SHIPPED = {
 @pytest.mark.parametrize("cls", list(SCHEMA_FILES), ids=lambda c: c.__name__)
 def test_shipped_schema_is_the_generated_one(cls: type) -> None:
     shipped = DATA.joinpath(SCHEMA_FILES[cls]).read_text(encoding="utf-8")
-    assert shipped == schema_text(cls), "stale schema: run `python -m loader_model.json_schema`"
+    assert shipped == schema_text(cls), (
+        "stale schema: run `python -m loader_model.parameters.json_schema`"
+    )
 
 
 @pytest.mark.parametrize("cls", list(SCHEMA_FILES), ids=lambda c: c.__name__)
@@ -54,7 +56,7 @@ EDITS = [
 def test_schema_refuses_what_the_loader_refuses(
     tmp_path: Path, keys: tuple, value: object, message: str
 ) -> None:
-    from loader_model.parameters import load_loader
+    from loader_model.parameters.sets import load_loader
 
     schema = json.loads(DATA.joinpath("loader.schema.json").read_text(encoding="utf-8"))
     data = copy.deepcopy(_loader_data())
@@ -72,7 +74,7 @@ def test_schema_refuses_what_the_loader_refuses(
     for key in keys[:-1]:
         node = node[key]
     node[keys[-1]] = value
-    from loader_model.parameter_toml import dumps
+    from loader_model.parameters.toml_format import dumps
 
     (tmp_path / "bad.toml").write_text(dumps(raw), encoding="utf-8")
     with pytest.raises(

@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import loader_model_generated as generated
-from loader_model.dynamics import OUTPUT_NAMES, STATE_NAMES, LoaderDynamics
+from loader_model.vehicle.dynamics import OUTPUT_NAMES, STATE_NAMES, LoaderDynamics
 from tests.numerics import central_difference
 
 ACCELERATIONS = generated.function("point_accelerations")

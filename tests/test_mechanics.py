@@ -13,7 +13,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import loader_model_generated as generated
-from loader_model.dynamics import PARAMETER_NAMES, LoaderDynamics
+from loader_model.vehicle.dynamics import PARAMETER_NAMES, LoaderDynamics
 
 MASS = generated.function("mass_matrix")
 POSITIONS = generated.function("point_positions")

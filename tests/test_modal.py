@@ -1,4 +1,4 @@
-"""Tests of loader_model.modal: modal analysis (Eq. 27-29), MAC and the Table 1 comparison.
+"""Tests of loader_model.modal.modes: modal analysis (Eq. 27-29), MAC and the Table 1 comparison.
 
 Reference values come from closed forms (2-DOF chain), general eigensolvers (numpy.linalg.eig on
 M⁻¹K and on K M⁻¹, the latter being Matlab's ``eig(K/M)`` of DESIGN.md erratum 7), algebraic
@@ -18,7 +18,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
-from loader_model.modal import (
+from loader_model.modal.modes import (
     TABLE_1,
     ModalTable,
     compare_with_table,

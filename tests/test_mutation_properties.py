@@ -16,11 +16,11 @@ import numpy as np
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from loader_model.dynamics import LoaderDynamics
 from loader_model.iso2631 import evaluate_record, read_vibration_csv
-from loader_model.modal import modal_analysis
-from loader_model.parameters import resolve_loader_and_load
-from loader_model.undamped import undamped_matrices
+from loader_model.modal.modes import modal_analysis
+from loader_model.modal.undamped import undamped_matrices
+from loader_model.vehicle.dynamics import LoaderDynamics
+from loader_model.vehicle.statics import resolve_machine
 from tests.mutations import (
     LOAD_PATHS,
     LOAD_TEXT,
@@ -45,7 +45,7 @@ SETTINGS = settings(max_examples=150, deadline=5000, suppress_health_check=[Heal
 
 def _use(loader_path: Path, load_path: Path | str) -> None:
     """The user's path: validate, build the model, linearise, modal analysis; all finite."""
-    loader, load = resolve_loader_and_load(loader_path, load_path)
+    loader, load = resolve_machine(loader_path, load_path)
     model = LoaderDynamics.from_parameters(loader, load)
     linear = model.linearise()
     assert all(np.all(np.isfinite(m)) for m in (linear.A, linear.B, linear.C))

@@ -16,8 +16,8 @@ import numpy as np
 import pytest
 
 from loader_model import cli
-from loader_model.dynamics import LoaderDynamics
-from loader_model.parameters import default_loader, load_loader, replace
+from loader_model.parameters.sets import default_loader, load_loader, replace
+from loader_model.vehicle.dynamics import LoaderDynamics
 from tests.conftest import PAPER_LAYOUT
 from tests.mutations import LOADER_TEXT, mutate_leaf
 

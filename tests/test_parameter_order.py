@@ -7,7 +7,7 @@ import pytest
 
 import loader_model_generated as generated
 from loader_model import parameters
-from loader_model.dynamics import LoaderDynamics
+from loader_model.vehicle.dynamics import LoaderDynamics
 
 STATIC_LOADS = {"F_Ay0", "F_By0"}
 
@@ -48,6 +48,6 @@ def test_unknown_load_case_is_rejected() -> None:
 
 def test_every_model_parameter_has_a_range() -> None:
     """The runtime API applies the parameter files' ranges to every generated parameter."""
-    from loader_model.model_parameter_checks import MODEL_PARAMETER_RANGES
+    from loader_model.parameters.model_checks import MODEL_PARAMETER_RANGES
 
     assert set(MODEL_PARAMETER_RANGES) == set(generated.PARAMETER_NAMES)

@@ -7,17 +7,17 @@ import math
 import numpy as np
 import pytest
 
-from loader_model.dynamics import LoaderDynamics
-from loader_model.parameter_checks import check_combination, static_equilibrium
-from loader_model.parameter_schema import BucketLoad, LoaderParameters
-from loader_model.parameter_toml import iter_leaves, leaf_metadata
-from loader_model.parameters import (
+from loader_model.parameters.schema import BucketLoad, LoaderParameters
+from loader_model.parameters.sets import (
     LOAD_CASES,
     bucket_load,
     default_loader,
     model_parameter_values,
     replace,
 )
+from loader_model.parameters.toml_format import iter_leaves, leaf_metadata
+from loader_model.vehicle.dynamics import LoaderDynamics
+from loader_model.vehicle.statics import check_combination, resolve_machine, static_equilibrium
 
 LEAVES = [*iter_leaves(LoaderParameters), *iter_leaves(BucketLoad)]
 
@@ -89,10 +89,12 @@ def test_static_piston_pressure_matches_the_defaults_documentation() -> None:
 
 def test_a_load_that_tips_the_machine_is_refused() -> None:
     heavy = replace(bucket_load("full"), {"mass": 14_000.0, "cog": (3.0, -0.4)})
-    with pytest.raises(
-        ValueError, match=r"static rear \(B\) axle load is -[0-9.e+]+ N; allowed: > 0"
-    ):
-        model_parameter_values(default_loader(), heavy)
+    # refused on every way from files or objects to the model
+    for build in (resolve_machine, LoaderDynamics.from_parameters):
+        with pytest.raises(
+            ValueError, match=r"static rear \(B\) axle load is -[0-9.e+]+ N; allowed: > 0"
+        ):
+            build(default_loader(), heavy)
 
 
 def test_a_load_behind_the_pivot_needs_a_pulling_cylinder_and_is_refused() -> None:

@@ -9,9 +9,9 @@ from pathlib import Path
 
 import pytest
 
-from loader_model.parameter_fields import Range, unit_of
-from loader_model.parameter_schema import BucketLoad, ChassisParameters
-from loader_model.parameters import (
+from loader_model.parameters.fields import Range, unit_of
+from loader_model.parameters.schema import BucketLoad, ChassisParameters
+from loader_model.parameters.sets import (
     MODEL_PARAMETER_NAMES,
     LoaderParameters,
     bucket_load,
@@ -48,7 +48,7 @@ def test_every_value_has_a_source_and_calibrated_ones_say_so() -> None:
     loader = default_loader()
     assert all(text.strip() for _, text in loader.sources)
     assert len(loader.sources) == 67
-    from loader_model.table1_calibration import FREE_PARAMETERS
+    from loader_model.modal.table1 import FREE_PARAMETERS
 
     calibrated = {path for item in FREE_PARAMETERS.values() for path in item.paths}
     assert len(calibrated) == 7

@@ -10,7 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from loader_model.parameters import combine_bodies, default_loader, load_loader, replace, save
+from loader_model.parameters.sets import combine_bodies, default_loader, load_loader, replace, save
 
 masses = st.floats(min_value=1e-3, max_value=1e5, allow_nan=False)
 coords = st.floats(min_value=-10.0, max_value=10.0, allow_nan=False)

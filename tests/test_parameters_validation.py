@@ -13,7 +13,7 @@ from typing import Any
 
 import pytest
 
-from loader_model.parameters import (
+from loader_model.parameters.sets import (
     bucket_load,
     default_loader,
     load_bucket_load,

@@ -171,7 +171,7 @@ def test_oil_mass_is_conserved_without_leakage_and_pump_flow(accumulator: bool) 
     ],
 )
 def test_bad_hydraulic_parameters_are_refused_by_name(updates, match) -> None:
-    from loader_model.parameters import default_loader, replace
+    from loader_model.parameters.sets import default_loader, replace
 
     with pytest.raises(ValueError, match=match):
         replace(default_loader(), updates)

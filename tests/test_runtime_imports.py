@@ -17,7 +17,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 USE_THE_MODEL = """
 import numpy as np
-from loader_model.dynamics import LoaderDynamics
+from loader_model.vehicle.dynamics import LoaderDynamics
 from tests.conftest import PAPER_LAYOUT
 model = LoaderDynamics(PAPER_LAYOUT)
 linear = model.linearise()

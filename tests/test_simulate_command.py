@@ -50,7 +50,7 @@ def test_simulate_errors_are_clear(tmp_path, capsys, monkeypatch, arguments, mes
 def test_ride_controllers_run_from_their_fixed_point(controller: str, capsys) -> None:
     """The controllers of loader_model.control close the loop in the simulator; started at their
     fixed point they leave a resting loader at rest (no start transient from the static p_A)."""
-    from loader_model.parameters import bucket_load
+    from loader_model.parameters.sets import bucket_load
     from loader_model.plant.plant_parameters import plant_parameter_vector
     from loader_model.simulation.courses import paper_course
     from loader_model.simulation.ride_control import controller_setup, plant_controller

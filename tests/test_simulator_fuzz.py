@@ -13,8 +13,8 @@ import math
 import numpy as np
 import pytest
 
-from loader_model.parameter_toml import iter_leaves, leaf_metadata
-from loader_model.parameters import LoaderParameters, bucket_load, default_loader, replace
+from loader_model.parameters.sets import LoaderParameters, bucket_load, default_loader, replace
+from loader_model.parameters.toml_format import iter_leaves, leaf_metadata
 from loader_model.plant.plant_parameters import PlantOptions, plant_parameter_vector
 from loader_model.simulation.courses import iso8608_course
 from loader_model.simulation.ride_control import (

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from loader_model.control.sensors import SENSOR_NAMES, SensorModel
-from loader_model.parameters import bucket_load
+from loader_model.parameters.sets import bucket_load
 from loader_model.plant.plant_parameters import plant_parameter_vector
 from loader_model.simulation.courses import paper_course
 from loader_model.simulation.ride_control import controller_setup, plant_controller

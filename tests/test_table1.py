@@ -7,10 +7,10 @@ import numpy as np
 import pytest
 
 from loader_model.cli import main
-from loader_model.modal import compare_with_table_1, modal_analysis
-from loader_model.parameters import bucket_load, default_loader, replace, save
-from loader_model.table1_calibration import FREE_PARAMETERS, calibrate_to_table_1
-from loader_model.undamped import undamped_matrices
+from loader_model.modal.modes import compare_with_table_1, modal_analysis
+from loader_model.modal.table1 import FREE_PARAMETERS, calibrate_to_table_1
+from loader_model.modal.undamped import undamped_matrices
+from loader_model.parameters.sets import bucket_load, default_loader, replace, save
 
 
 def _modes(load_case: str, **kwargs: bool):

@@ -1,7 +1,7 @@
 """Calibrate a loader's least-known parameters so that its modes reproduce Table 1.
 
 Fits tyre stiffnesses (k_x, k_Ay, k_By), the chassis and boom inertias and the piston-side dead
-volume within physical bounds (loader_model.table1_calibration.FREE_PARAMETERS), on the generated
+volume within physical bounds (loader_model.modal.table1.FREE_PARAMETERS), on the generated
 model, reading Table 1's columns as M·φ (DESIGN.md errata 7). Writes the calibrated parameter file
 only if every frequency is within 1 % and every MAC at least 0.99.
 """
@@ -21,16 +21,17 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from loader_model.export import check_output_path
-    from loader_model.modal import modal_analysis
-    from loader_model.modal_report import format_modes
-    from loader_model.parameters import PARAMETER_SUFFIXES, resolve_loader_and_load, save
-    from loader_model.table1_calibration import FREE_PARAMETERS, calibrate_to_table_1
-    from loader_model.undamped import undamped_matrices
+    from loader_model.io.export import check_output_path
+    from loader_model.modal.modes import modal_analysis
+    from loader_model.modal.report import format_modes
+    from loader_model.modal.table1 import FREE_PARAMETERS, calibrate_to_table_1
+    from loader_model.modal.undamped import undamped_matrices
+    from loader_model.parameters.sets import PARAMETER_SUFFIXES, save
+    from loader_model.vehicle.statics import resolve_machine
 
     if args.output is not None:  # refuse a bad output path before the long fit
         check_output_path(args.output, PARAMETER_SUFFIXES, "--output")
-    loader, load = resolve_loader_and_load(args.params, args.load)
+    loader, load = resolve_machine(args.params, args.load)
     result, calibrated = calibrate_to_table_1(loader, load)
     print(f"Calibration to Table 1 ({result.n_evaluations} model evaluations)")
     for name, value in result.parameters.items():

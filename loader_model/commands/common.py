@@ -25,7 +25,7 @@ def add_model_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def model_from_arguments(args: argparse.Namespace) -> Any:
-    """Build the :class:`loader_model.dynamics.LoaderDynamics` the arguments describe."""
-    from loader_model.dynamics import LoaderDynamics
+    """Build the :class:`loader_model.vehicle.dynamics.LoaderDynamics` the arguments describe."""
+    from loader_model.vehicle.dynamics import LoaderDynamics
 
     return LoaderDynamics.from_parameters(args.params, args.load)

@@ -103,7 +103,7 @@ def run(args: argparse.Namespace) -> int:
     """Design, print gains / costs / poles / margins, write the figure atomically."""
     import numpy as np
 
-    from loader_model.export import check_output_path, write_atomically
+    from loader_model.io.export import check_output_path, write_atomically
 
     if args.plot is not None:
         check_output_path(args.plot, (".png",), "plot file")  # before any work

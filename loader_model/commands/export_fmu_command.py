@@ -46,15 +46,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Check the arguments, build the FMU in a temporary folder and move it to OUTPUT."""
-    from loader_model.export import check_output_path
     from loader_model.fmu.build import export_plant_fmu, find_compiler
+    from loader_model.io.export import check_output_path
 
     check_output_path(args.output, (".fmu",), "FMU")  # before any work
     find_compiler()  # a clear error before the parameter files are read
-    from loader_model.parameters import resolve_loader_and_load
     from loader_model.plant.plant_parameters import plant_parameter_vector
+    from loader_model.vehicle.statics import resolve_machine
 
-    loader, load = resolve_loader_and_load(args.params, args.load)
+    loader, load = resolve_machine(args.params, args.load)
     params = plant_parameter_vector(loader, load)
     controller = CONTROLLER_CHOICES[args.controller]
     settings = None

@@ -112,9 +112,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def _loader_and_cylinder(args: argparse.Namespace) -> tuple[Any, Any]:
     from loader_model.identification import EquivalentCylinder
-    from loader_model.parameters import resolve_loader_and_load
+    from loader_model.vehicle.statics import resolve_machine
 
-    loader, load = resolve_loader_and_load(args.params, args.load)
+    loader, load = resolve_machine(args.params, args.load)
     return loader, EquivalentCylinder.from_parameters(loader, load)
 
 
@@ -137,7 +137,7 @@ def _fit(args: argparse.Namespace) -> int:
         read_measurement_csv,
     )
     from loader_model.identification import report as rep
-    from loader_model.parameters import replace, save
+    from loader_model.parameters.sets import replace, save
 
     _check_outputs(args)
     loader, cylinder = _loader_and_cylinder(args)

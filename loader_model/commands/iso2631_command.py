@@ -99,7 +99,7 @@ def _k_factors(pairs: list[tuple[str, str]]) -> dict[str, float]:
 
 def run(args: argparse.Namespace) -> int:
     """Evaluate ``args.data`` and print the table; write the plot if asked. Returns 0."""
-    from loader_model.export import check_output_path
+    from loader_model.io.export import check_output_path
     from loader_model.iso2631 import (
         evaluate_record,
         format_evaluation,

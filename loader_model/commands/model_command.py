@@ -19,8 +19,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from loader_model.export import ARRAY_SUFFIXES, check_output_path
-    from loader_model.report import model_summary
+    from loader_model.io.export import ARRAY_SUFFIXES, check_output_path
+    from loader_model.vehicle.summary import model_summary
 
     if args.export is not None:  # refuse a bad path (also '') before any work
         check_output_path(args.export, ARRAY_SUFFIXES, "--export")

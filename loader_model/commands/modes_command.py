@@ -19,12 +19,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from loader_model.modal import modal_analysis
-    from loader_model.modal_report import format_modes
-    from loader_model.parameters import resolve_loader_and_load
-    from loader_model.undamped import undamped_matrices
+    from loader_model.modal.modes import modal_analysis
+    from loader_model.modal.report import format_modes
+    from loader_model.modal.undamped import undamped_matrices
+    from loader_model.vehicle.statics import resolve_machine
 
-    loader, load = resolve_loader_and_load(args.params, args.load)
+    loader, load = resolve_machine(args.params, args.load)
     matrices = undamped_matrices(loader, load, gravity_stiffness=not args.no_gravity)
     result = modal_analysis(matrices.mass, matrices.stiffness)
     title = f"{args.params or 'default loader'}, bucket load {args.load} ({load.mass:g} kg)"

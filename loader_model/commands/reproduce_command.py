@@ -22,12 +22,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _print_model() -> None:
-    from loader_model.dynamics import LoaderDynamics
-    from loader_model.modal import modal_analysis
-    from loader_model.modal_report import format_modes
-    from loader_model.parameters import LOAD_CASES, bucket_load, default_loader
-    from loader_model.report import model_summary
-    from loader_model.undamped import undamped_matrices
+    from loader_model.modal.modes import modal_analysis
+    from loader_model.modal.report import format_modes
+    from loader_model.modal.undamped import undamped_matrices
+    from loader_model.parameters.sets import LOAD_CASES, bucket_load, default_loader
+    from loader_model.vehicle.dynamics import LoaderDynamics
+    from loader_model.vehicle.summary import model_summary
 
     loader = default_loader()
     for case in LOAD_CASES:

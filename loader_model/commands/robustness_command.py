@@ -63,7 +63,7 @@ def run(args: argparse.Namespace) -> int:
     folder = Path(args.output or f"{Path(args.study).stem}_results")
     if not folder.parent.is_dir():
         raise ValueError(f"--output {str(folder)!r}: the folder {str(folder.parent)!r} is missing")
-    from loader_model.export import write_atomically
+    from loader_model.io.export import write_atomically
     from loader_model.robustness.engine import read_gains, run_study
     from loader_model.robustness.report import report_text
 

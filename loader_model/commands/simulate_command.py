@@ -95,7 +95,7 @@ def run(args: argparse.Namespace) -> int:
     up to the violation and raises ValueError naming the time, the state, the bound and the
     files (exit code 2): no ISO 2631 evaluation of it.
     """
-    from loader_model.export import check_output_path
+    from loader_model.io.export import check_output_path
     from loader_model.iso2631 import format_evaluation
     from loader_model.plant.plant_parameters import PlantOptions, plant_parameter_vector
     from loader_model.simulation.result import RESULT_SUFFIXES
@@ -129,11 +129,11 @@ def run(args: argparse.Namespace) -> int:
     course = _course(args.course, args.speed, args.duration, args.seed)
     control: dict = {}
     if args.controller in ("virtual-accumulator", "skyhook") or settings_file is not None:
-        from loader_model.parameters import resolve_loader_and_load
         from loader_model.simulation.ride_control import controller_setup, plant_controller
+        from loader_model.vehicle.statics import resolve_machine
 
         law = "skyhook" if settings_file is not None else args.controller
-        _, load = resolve_loader_and_load(args.params, args.load)
+        _, load = resolve_machine(args.params, args.load)
         settings, state = controller_setup(
             law, params, load.pressure_normalisation, settings=settings_file
         )

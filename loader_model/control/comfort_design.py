@@ -86,7 +86,7 @@ def comfort_plants(
     params: dict[str, np.ndarray] | None = None,
 ) -> tuple[DesignPlant, ...]:
     """Balanced :class:`DesignPlant` per load with the V_p and p_A r.m.s. limits (3 σ rule)."""
-    from loader_model.parameters import bucket_load
+    from loader_model.parameters.sets import bucket_load
     from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
 
     plants = []

@@ -64,7 +64,7 @@ def plot_pitch_responses(
     frequency_hz: np.ndarray,
 ) -> Path:
     """Write the Fig. 12 PNG to ``path`` (no atomicity: callers use
-    :func:`loader_model.export.write_atomically`); one panel per load, log-log axes."""
+    :func:`loader_model.io.export.write_atomically`); one panel per load, log-log axes."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 

@@ -80,7 +80,7 @@ class ComfortCase:
 @cache
 def _cached_case(load: str, params_key: tuple[float, ...] | None) -> ComfortCase:
     from loader_model.control.sensors import sensor_signals
-    from loader_model.parameters import bucket_load
+    from loader_model.parameters.sets import bucket_load
     from loader_model.plant.equilibrium import static_state
     from loader_model.plant.linear import linearise_plant
     from loader_model.plant.plant import plant_function

@@ -1,8 +1,8 @@
 r"""Controller settings (sections 3.2, 3.3; Table 3) as a validated parameter set and a CasADi vector.
 
 :class:`ControllerSettings` is read from ``data/controller_default.toml`` in the parameter-file
-style of :mod:`loader_model.parameter_toml` (every value ``{ value, unit, source }``, ranges with
-reasons from :mod:`loader_model.parameter_fields`). The controllers of
+style of :mod:`loader_model.parameters.toml_format` (every value ``{ value, unit, source }``, ranges with
+reasons from :mod:`loader_model.parameters.fields`). The controllers of
 :mod:`loader_model.control.controllers` take their numbers as one vector ``settings``
 (:data:`SETTINGS_NAMES`), so one CasADi Function serves every setting. Four entries of that vector
 are not controller settings but facts of the loader and its load case, passed in by
@@ -26,10 +26,10 @@ from pathlib import Path
 
 import numpy as np
 
-from loader_model.files import read_text
-from loader_model.parameter_checks import check_ranges
-from loader_model.parameter_fields import Range, Sourced, si, sources_field
-from loader_model.parameter_toml import build, dumps, to_raw
+from loader_model.io.files import read_text
+from loader_model.parameters.checks import check_ranges
+from loader_model.parameters.fields import Range, Sourced, si, sources_field
+from loader_model.parameters.toml_format import build, dumps, to_raw
 
 __all__ = [
     "SETTINGS_NAMES",
@@ -165,7 +165,7 @@ def with_gains(settings: ControllerSettings, k_fb: object, source: str) -> Contr
 def save_settings(settings: ControllerSettings, path: str | Path, header: str = "") -> None:
     """Write ``settings`` as a controller TOML file (atomically; :func:`load_settings` reads it
     back equal)."""
-    from loader_model.export import write_atomically
+    from loader_model.io.export import write_atomically
 
     text = dumps(to_raw(settings), header)
     write_atomically(

@@ -99,7 +99,7 @@ def _closed_loops(
     from loader_model.control.linear_controller import closed_loop, linear_controller
     from loader_model.control.sensors import sensor_signals
     from loader_model.control.settings import default_settings, settings_vector_for_plant
-    from loader_model.parameters import bucket_load
+    from loader_model.parameters.sets import bucket_load
     from loader_model.plant.equilibrium import static_state
     from loader_model.plant.linear import linearise_plant
     from loader_model.plant.plant import plant_function

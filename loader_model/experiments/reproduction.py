@@ -98,7 +98,7 @@ def build_reproduction(folder: Path, options: ReportOptions) -> dict[str, object
     )
     from loader_model.experiments.trials import DESIGNED_CONTROLLERS, trial_specs
     from loader_model.iso2631.plot import plot_weightings
-    from loader_model.modal import TABLE_1
+    from loader_model.modal.modes import TABLE_1
 
     timings: dict[str, float] = {}
     tables: dict[str, Rows] = {}

@@ -24,9 +24,9 @@ Rows = list[list[str]]
 
 def table1_rows() -> Rows:
     """Table 1 beside the model: frequency per mode and MAC of M·φ (errata 7), both loads."""
-    from loader_model.modal import compare_with_table_1, modal_analysis
-    from loader_model.parameters import LOAD_CASES, bucket_load, default_loader
-    from loader_model.undamped import undamped_matrices
+    from loader_model.modal.modes import compare_with_table_1, modal_analysis
+    from loader_model.modal.undamped import undamped_matrices
+    from loader_model.parameters.sets import LOAD_CASES, bucket_load, default_loader
 
     rows: Rows = [["load", "mode", "model f [Hz]", "paper f [Hz]", "error [%]", "MAC M·φ"]]
     loader = default_loader()
@@ -55,7 +55,7 @@ def _complex(values: np.ndarray) -> str:
 
 def pressure_loop_rows(figure: Path | None = None) -> Rows:
     """The detailed pressure loop (empty bucket) beside Eq. 43; optionally its Bode figure."""
-    from loader_model.parameters import bucket_load, default_loader
+    from loader_model.parameters.sets import bucket_load, default_loader
     from loader_model.plant.plant_report import hydraulics_report, plot_pressure_loop
 
     report = hydraulics_report(default_loader(), bucket_load("empty"))
@@ -95,7 +95,7 @@ def identification_rows(seed: int = 0) -> tuple[Rows, Rows]:
         synthesize,
     )
     from loader_model.identification.report import TABLE4_ROWS, TABLE5_ROWS
-    from loader_model.parameters import default_loader
+    from loader_model.parameters.sets import default_loader
 
     speed = default_loader().pump.shaft_speed
     test = synthesize(SensorOptions.friction_test(seed), LiftProfile.friction_test())

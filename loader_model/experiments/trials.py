@@ -193,7 +193,7 @@ def controller_arguments(
     (baseline and passive: the pump holds its static command; the designed controllers: the
     skyhook with gains ``k_fb``)."""
     from loader_model.control.settings import default_settings, with_gains
-    from loader_model.parameters import bucket_load
+    from loader_model.parameters.sets import bucket_load
     from loader_model.simulation.ride_control import controller_setup, plant_controller
 
     if controller not in (*CONTROLLERS, *DESIGNED_CONTROLLERS):

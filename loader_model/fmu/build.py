@@ -26,7 +26,6 @@ import numpy as np
 
 from loader_model.control.controllers import controller_state_names
 from loader_model.control.settings import SETTINGS_NAMES
-from loader_model.export import check_output_path, write_atomically
 from loader_model.fmu.closed_loop import closed_loop_functions, closed_loop_variables
 from loader_model.fmu.model_description import MODEL_IDENTIFIER, model_description_xml
 from loader_model.fmu.variables import (
@@ -34,6 +33,7 @@ from loader_model.fmu.variables import (
     FMU_PARAMETER_NAMES,
     fmu_variables,
 )
+from loader_model.io.export import check_output_path, write_atomically
 from loader_model.plant.equilibrium import equilibrium_function, static_state
 from loader_model.plant.plant import (
     EXOGENOUS_NAMES,

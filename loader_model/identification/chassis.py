@@ -36,7 +36,7 @@ import casadi as ca
 import numpy as np
 
 import loader_model_generated as generated
-from loader_model.parameter_schema import BucketLoad, LoaderParameters
+from loader_model.parameters.schema import BucketLoad, LoaderParameters
 
 __all__ = ["boom_forces", "boom_turn", "mechanical_parameter_columns"]
 
@@ -85,17 +85,17 @@ def mechanical_parameter_columns(
     """Model parameter vectors (``complete_parameters``), one column per load mass in kg.
 
     Each mass is a bucket load with the centre of gravity and the inertia per kg of ``load``,
-    combined with the boom (:func:`loader_model.parameters.model_parameter_values`); distinct
+    combined with the boom (:func:`loader_model.parameters.sets.model_parameter_values`); distinct
     masses are computed once.
     """
-    from loader_model.parameters import model_parameter_values
+    from loader_model.parameters.sets import model_parameter_values
 
     unique, index = np.unique(np.asarray(masses, dtype=float), return_inverse=True)
     complete = generated.function("complete_parameters")
     columns = []
     for mass in unique:
         case = dataclasses.replace(load, mass=float(mass), inertia=load.inertia * mass / load.mass)
-        values = model_parameter_values(loader, case, check=False) | {"F_Ay0": 0.0, "F_By0": 0.0}
+        values = model_parameter_values(loader, case) | {"F_Ay0": 0.0, "F_By0": 0.0}
         vector = np.array([float(values[n]) for n in generated.PARAMETER_NAMES])
         columns.append(np.asarray(complete(vector)[0], dtype=float).ravel())
     return np.column_stack(columns)[:, index]

@@ -44,7 +44,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from loader_model.parameter_schema import BucketLoad, LoaderParameters
+from loader_model.parameters.schema import BucketLoad, LoaderParameters
 
 __all__ = ["EquivalentCylinder"]
 

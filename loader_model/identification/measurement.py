@@ -47,7 +47,7 @@ from pathlib import Path
 
 import numpy as np
 
-from loader_model.export import write_atomically
+from loader_model.io.export import write_atomically
 
 __all__ = [
     "CHASSIS_COLUMNS",

@@ -8,10 +8,10 @@ from typing import Any
 
 import numpy as np
 
-from loader_model.export import write_atomically
 from loader_model.identification.leakage import LeakageFit
 from loader_model.identification.pipeline import FrictionResult, Signals
 from loader_model.identification.regression import LinearFit
+from loader_model.io.export import write_atomically
 
 __all__ = [
     "TABLE4_ROWS",

@@ -22,7 +22,7 @@ The reference: a smooth trapezoidal velocity profile (raised-cosine ramps) of ex
 strokes (:func:`~.lift_test.reference_schedule`); the bucket load changes only while the boom
 is held at the bottom. Each load mass m is its own plant parameter vector (bucket load of mass m with the
 centre of gravity and the inertia per kg of a load case, combined with the boom by
-:func:`~loader_model.parameters.combine_bodies`), passed per sample interval.
+:func:`~loader_model.parameters.sets.combine_bodies`), passed per sample interval.
 
 Integration: CasADi ``cvodes`` on the sample grid, inputs piecewise constant. Recorded flow:
 the plant's ``Q_pump`` (n V_p); p_A, p_B gauge. True ẋ and ẍ: the generated
@@ -51,7 +51,7 @@ from loader_model.identification.lift_test import (
     reference_schedule,
 )
 from loader_model.identification.measurement import MeasurementRecord
-from loader_model.parameter_schema import BucketLoad, LoaderParameters
+from loader_model.parameters.schema import BucketLoad, LoaderParameters
 
 __all__ = ["TABLE4", "TABLE5", "LiftProfile", "SensorOptions", "SyntheticRecording", "synthesize"]
 
@@ -206,12 +206,12 @@ def synthesize(
     RuntimeError
         If the integrator fails.
     """
-    from loader_model.parameters import resolve_loader_and_load
     from loader_model.plant.equilibrium import static_state
+    from loader_model.vehicle.statics import resolve_machine
 
     sensors = sensors or SensorOptions()
     profile = profile or LiftProfile()
-    loader, load = resolve_loader_and_load(loader, load)
+    loader, load = resolve_machine(loader, load)
     if not sensors.sample_rate_hz > 0.0:
         raise ValueError(f"sample rate must be > 0 Hz; got {sensors.sample_rate_hz!r}")
     if not 0.0 <= sensors.outlier_fraction < 0.5:

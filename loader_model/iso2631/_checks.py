@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from loader_model.arrays import real_array
+from loader_model.io.arrays import real_array
 
 __all__ = ["as_positive", "as_signal", "shown"]
 

@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 
-from loader_model.export import check_output_path, write_atomically
+from loader_model.io.export import check_output_path, write_atomically
 from loader_model.iso2631.weightings import (
     NOMINAL_BAND_HZ,
     WEIGHTING_NAMES,
@@ -37,7 +37,7 @@ def plot_weightings(
     ----------
     path : str or pathlib.Path
         Output file, suffix one of :data:`PLOT_SUFFIXES`; written atomically by
-        :func:`loader_model.export.write_atomically`, so a failure leaves no partial file.
+        :func:`loader_model.io.export.write_atomically`, so a failure leaves no partial file.
     weightings : sequence of str
         Names from :data:`~loader_model.iso2631.weightings.WEIGHTING_NAMES`.
     frequency_range_hz : (float, float)

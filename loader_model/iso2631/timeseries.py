@@ -16,7 +16,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-from loader_model.files import iter_lines
+from loader_model.io.files import iter_lines
 from loader_model.iso2631._checks import as_signal
 
 __all__ = [
@@ -251,7 +251,7 @@ def read_vibration_csv(path: str | Path) -> VibrationRecord:
 
     Lines starting with ``#`` and blank lines are skipped; the delimiter is a comma. The file
     must be UTF-8 text, with or without a byte-order mark, with ``\n`` or ``\r\n`` line
-    endings (:func:`loader_model.files.iter_lines`). It is read in blocks of
+    endings (:func:`loader_model.io.files.iter_lines`). It is read in blocks of
     :data:`CSV_BLOCK_ROWS` rows, so memory stays at about 2 x 8 bytes per value of the file.
     Accelerations beyond :data:`MAX_ACCELERATION` are refused as implausible; the time column
     may have any origin (e.g. Unix time stamps), see :class:`VibrationRecord`.

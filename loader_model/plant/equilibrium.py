@@ -26,6 +26,7 @@ import loader_model_generated as generated
 from loader_model.plant.components import ATMOSPHERIC_PRESSURE_PA
 from loader_model.plant.plant import STATE_NAMES
 from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
+from loader_model.vehicle.cylinder import static_piston_pressure
 
 __all__ = ["equilibrium_function", "static_state"]
 
@@ -36,11 +37,8 @@ def _build(symbol: type = ca.SX) -> ca.Function:
     params = symbol.sym("params", len(PLANT_PARAMETER_NAMES))
     theta = {name: params[i] for i, name in enumerate(PLANT_PARAMETER_NAMES)}
     _, force = generated.function("complete_parameters")(params[:_N_MECH])
-    n = theta["n_cyl"]
-    piston = ca.pi / 4 * theta["d_piston"] ** 2
-    annulus = piston - ca.pi / 4 * theta["d_rod"] ** 2
     p_b = theta["p_charge"]
-    p_a = (force + n * annulus * p_b) / (n * piston)
+    p_a = static_piston_pressure(force, theta["n_cyl"], theta["d_piston"], theta["d_rod"], p_b)
     holding = theta["pump_on"] * theta["valves_on"] * theta["leakage_on"]
     v_p = holding * theta["k_Lp"] * (p_a - p_b) / theta["n_pump"]
     gas = theta["n_acc"] * theta["V_0"]

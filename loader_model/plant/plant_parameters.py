@@ -106,24 +106,27 @@ def plant_parameter_vector(
     Parameters
     ----------
     loader, load
-        A :class:`loader_model.parameters.LoaderParameters` and
-        :class:`loader_model.parameters.BucketLoad` (or what
-        :func:`loader_model.parameters.resolve_loader_and_load` accepts).
+        A :class:`loader_model.parameters.sets.LoaderParameters` and
+        :class:`loader_model.parameters.sets.BucketLoad` (or what
+        :func:`loader_model.vehicle.statics.resolve_machine` accepts).
     options : PlantOptions, optional
         Switches; default: pump, valves, leakage and friction on, accumulator off.
     check : bool
         Check the loader and load together at the static equilibrium first
-        (:func:`loader_model.parameter_checks.check_combination`).
+        (:func:`loader_model.vehicle.statics.check_combination`).
     """
     from loader_model import parameters
+    from loader_model.vehicle import statics
 
     options = options or PlantOptions()
     given = isinstance(loader, parameters.LoaderParameters) and isinstance(
         load, parameters.BucketLoad
     )
     if not given:  # files or names: resolving them also checks the combination
-        loader, load = parameters.resolve_loader_and_load(loader, load)
-    mechanical = parameters.model_parameter_values(loader, load, check=check and given)
+        loader, load = statics.resolve_machine(loader, load)
+    elif check:
+        statics.check_combination(loader, load)
+    mechanical = parameters.model_parameter_values(loader, load)
     cyl, hyd, leak, fric = loader.cylinders, loader.hydraulics, loader.leakage, loader.friction
     pump, acc = loader.pump, loader.accumulator
     values = mechanical | {

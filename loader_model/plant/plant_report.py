@@ -53,10 +53,10 @@ def _modes(params: np.ndarray) -> list[tuple[float, float]]:
 
 def hydraulics_report(loader: Any, load: Any, *, highpass_rad_s: float = 1.0) -> HydraulicsReport:
     """Static pressures, k_eq, modes per setting and the pressure loop of ``loader``."""
-    from loader_model import parameters
-
-    loader, load = parameters.resolve_loader_and_load(loader, load)
     from loader_model.plant.equilibrium import static_state
+    from loader_model.vehicle.statics import resolve_machine
+
+    loader, load = resolve_machine(loader, load)
 
     params = plant_parameter_vector(loader, load)
     state, command = static_state(params)

@@ -2,7 +2,7 @@
 
 Every distribution has a finite support [low, high], and the study refuses it unless both ends lie
 inside the parameter's validated range (the range and reason of the parameter file's field, see
-:mod:`loader_model.parameter_fields`). Samples are drawn by the inverse CDF of a point of the
+:mod:`loader_model.parameters.fields`). Samples are drawn by the inverse CDF of a point of the
 sampling design (Latin hypercube or Sobol, :mod:`~loader_model.robustness.sampling`):
 
 - ``uniform``: ``low``, ``high``;
@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from loader_model.parameter_fields import Range
+from loader_model.parameters.fields import Range
 
 __all__ = ["DISTRIBUTIONS", "Distribution", "parse_distribution"]
 

@@ -121,7 +121,7 @@ def _dask(study: Study, gains: Gains, batches: list, scheduler: Any, save: Any) 
 def _write_gains(path: Path, gains: Gains) -> None:
     import json
 
-    from loader_model.export import write_atomically
+    from loader_model.io.export import write_atomically
 
     text = json.dumps(gains, indent=1, sort_keys=True) + "\n"
     write_atomically(path, lambda t: t.write_text(text, encoding="utf-8"), (".json",), "gains")

@@ -1,6 +1,6 @@
 """One sample of a study: build its plant and road, run every controller, one row per controller.
 
-Composes what exists: the parameter files' validated :func:`~loader_model.parameters.replace`,
+Composes what exists: the parameter files' validated :func:`~loader_model.parameters.sets.replace`,
 :func:`~loader_model.plant.plant_parameters.plant_parameter_vector`, the courses, the simulator and
 the ride controllers. Nothing here stops a study: a sample whose plant fails the parameter checks,
 or a run that raises (:class:`~loader_model.simulation.simulator.SimulationError` when the

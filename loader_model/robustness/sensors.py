@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from loader_model.parameter_fields import Range
+from loader_model.parameters.fields import Range
 
 __all__ = [
     "SENSOR_ERROR_FIELDS",

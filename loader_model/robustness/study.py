@@ -108,7 +108,7 @@ class Study:
 
 
 def parameter_field(path: str) -> tuple[str, Any]:
-    """The SI unit and validated range (:class:`~loader_model.parameter_fields.Range`) of a study
+    """The SI unit and validated range (:class:`~loader_model.parameters.fields.Range`) of a study
     parameter path.
 
     ``load.<field>`` is a field of the bucket-load file, ``sensors.<name>.gain|offset|noise_std``
@@ -120,8 +120,8 @@ def parameter_field(path: str) -> tuple[str, Any]:
     ValueError
         Naming the path, with the closest valid path.
     """
-    from loader_model.parameter_schema import BucketLoad, LoaderParameters
-    from loader_model.parameter_toml import iter_leaves, leaf_metadata
+    from loader_model.parameters.schema import BucketLoad, LoaderParameters
+    from loader_model.parameters.toml_format import iter_leaves, leaf_metadata
     from loader_model.robustness.sensors import SENSOR_ERROR_FIELDS
 
     if path in SENSOR_ERROR_FIELDS:
@@ -225,7 +225,7 @@ def parse_study(text: str, origin: str = "study file") -> Study:
     ValueError
         Naming the origin, the key, the value and what is allowed; raised before anything runs.
     """
-    from loader_model.parameters import LOAD_CASES
+    from loader_model.parameters.sets import LOAD_CASES
     from loader_model.simulation.courses import PAPER_SPACING_M
 
     try:

@@ -58,7 +58,7 @@ def write_part(folder: Path, study: Study, first: int, rows: list[dict[str, Any]
     import pyarrow as pa
     import pyarrow.parquet as pq
 
-    from loader_model.export import write_atomically
+    from loader_model.io.export import write_atomically
 
     table = pa.Table.from_pylist(rows, schema=result_schema(study))
     path = folder / "parts" / f"part-{first:08d}.parquet"
@@ -88,7 +88,7 @@ def combine_parts(folder: Path, study: Study) -> Any:
     import pyarrow.csv as csv
     import pyarrow.parquet as pq
 
-    from loader_model.export import write_atomically
+    from loader_model.io.export import write_atomically
 
     schema = result_schema(study)
     parts = [pq.read_table(path, schema=schema) for path in _part_files(folder)]

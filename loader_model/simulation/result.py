@@ -5,7 +5,7 @@ period, the command u_k held over it): every plant state (:data:`~loader_model.p
 STATE_NAMES`), every plant output not already a state of the same name, the controller's command
 ``V_p_ref`` and state ``z_0 ...``, and the exogenous input (road, road rate, disturbance).
 Files: CSV with a header ``name [unit]`` per column, or NPZ with one array per column and the
-units and events as JSON strings; both written atomically (:func:`loader_model.export.
+units and events as JSON strings; both written atomically (:func:`loader_model.io.export.
 write_atomically`).
 """
 
@@ -19,7 +19,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-from loader_model.export import write_atomically
+from loader_model.io.export import write_atomically
 
 __all__ = ["COLUMN_UNITS", "RESULT_SUFFIXES", "Event", "SimulationResult"]
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from loader_model.export import check_output_path, write_atomically
+from loader_model.io.export import check_output_path, write_atomically
 from loader_model.simulation.result import SimulationResult
 
 __all__ = ["PLOT_SUFFIXES", "plot_seat"]

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.optimize
 
-from loader_model.modal import (
+from loader_model.modal.modes import (
     TABLE_1,
     ModalTable,
     check_reading,
@@ -186,7 +186,7 @@ def calibrate(
     ------
     ValueError
         For inconsistent ``start``/``bounds``, an unknown ``reading``, invalid tolerances, or when
-        :func:`~loader_model.modal.modal_analysis` rejects the builder's matrices (also mid-fit:
+        :func:`~loader_model.modal.modes.modal_analysis` rejects the builder's matrices (also mid-fit:
         choose bounds inside which M is positive definite and K positive semi-definite).
 
     Notes

@@ -8,7 +8,7 @@ Every value is an inline table with its SI unit and a one-line source or reason:
 Sections are TOML tables named after the dataclass fields (``[tyres.front]``). Reading checks
 unknown keys (suggesting the closest valid key), missing keys, the unit string (must equal the
 field's SI unit, no conversion), the value type and finiteness. Range and consistency checks are
-done afterwards by :func:`loader_model.parameters.validate`. Floats are written with ``repr``,
+done afterwards by :func:`loader_model.parameters.sets.validate`. Floats are written with ``repr``,
 which :mod:`tomllib` reads back bit for bit, so load -> save -> load is exact.
 
 The writer is hand-written on purpose: tomli-w (the usual TOML writer) writes every mapping as a
@@ -27,7 +27,7 @@ import typing
 from collections.abc import Iterator, Mapping
 from typing import Any
 
-from loader_model.arrays import real_integer, real_number
+from loader_model.io.arrays import real_integer, real_number
 
 __all__ = ["build", "dumps", "iter_leaves", "leaf_metadata", "section_types", "to_raw"]
 
@@ -79,8 +79,8 @@ def _check_keys(data: Mapping[str, Any], allowed: list[str], where: str) -> None
 
 
 def _number(raw: Any, path: str, integer: bool) -> float | int:
-    """One number of a leaf: :func:`loader_model.arrays.real_integer` or a finite
-    :func:`loader_model.arrays.real_number` (a TOML array, a boolean or a string is refused)."""
+    """One number of a leaf: :func:`loader_model.io.arrays.real_integer` or a finite
+    :func:`loader_model.io.arrays.real_number` (a TOML array, a boolean or a string is refused)."""
     if integer:
         return real_integer(path, raw)
     value = real_number(path, raw)

@@ -4,7 +4,7 @@ Editors that read JSON Schema for TOML (Taplo / Even Better TOML, JetBrains) val
 complete a parameter file with it: every section and key, the unit each value must carry, and
 the plausible range of every value with its reason. The schemas ship as
 ``loader_model/data/loader.schema.json`` and ``load.schema.json``; regenerate them with
-``python -m loader_model.json_schema`` after changing a field (a test compares the bytes).
+``python -m loader_model.parameters.json_schema`` after changing a field (a test compares the bytes).
 Consistency checks that involve several fields are not expressible here and run on loading.
 """
 
@@ -16,9 +16,9 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from loader_model.parameter_fields import Range
-from loader_model.parameter_schema import BucketLoad, LoaderParameters
-from loader_model.parameter_toml import leaf_metadata, section_types
+from loader_model.parameters.fields import Range
+from loader_model.parameters.schema import BucketLoad, LoaderParameters
+from loader_model.parameters.toml_format import leaf_metadata, section_types
 
 __all__ = ["SCHEMA_FILES", "parameter_schema", "schema_text", "write_schemas"]
 
@@ -27,7 +27,7 @@ SCHEMA_FILES: dict[type, str] = {
     LoaderParameters: "loader.schema.json",
     BucketLoad: "load.schema.json",
 }
-_DATA = Path(__file__).with_name("data")
+_DATA = Path(__file__).parents[1] / "data"
 
 
 def _number(allowed: Range, integer: bool) -> dict[str, Any]:

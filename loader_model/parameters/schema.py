@@ -23,8 +23,8 @@ with signs, not as the paper's abs()-based distances of Eq. 8, 9 (DESIGN.md erra
                B o                  o A          (x forward ->, y up)
 
 The dataclasses check only the type of each value on construction
-(:class:`~loader_model.parameter_fields.TypedLeaves`: a real number, not an array, boolean or
-string); :func:`loader_model.parameters.validate` checks ranges and consistency, and the TOML
+(:class:`~loader_model.parameters.fields.TypedLeaves`: a real number, not an array, boolean or
+string); :func:`loader_model.parameters.sets.validate` checks ranges and consistency, and the TOML
 loaders call it before returning.
 """
 
@@ -33,7 +33,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from loader_model.parameter_fields import (
+from loader_model.parameters.fields import (
     COORDINATE,
     Range,
     Sourced,
@@ -42,7 +42,7 @@ from loader_model.parameter_fields import (
     sources_field,
     unit_of,
 )
-from loader_model.parameter_hydraulics import (
+from loader_model.parameters.hydraulics import (
     AccumulatorParameters,
     ControllerParameters,
     CylinderParameters,

@@ -1,6 +1,6 @@
 """Parameter sets of the hydraulic drive and the controller (paper sections 2.3, 2.4, 3, 4.1).
 
-Units follow the SI rule of :mod:`loader_model.parameter_schema`; the pump's per-revolution
+Units follow the SI rule of :mod:`loader_model.parameters.schema`; the pump's per-revolution
 quantities use m³/rev and rev/s as in Table 2 and the nomenclature.
 """
 
@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from loader_model.parameter_fields import Range, TypedLeaves, integer, si
+from loader_model.parameters.fields import Range, TypedLeaves, integer, si
 
 _DEAD_VOLUME = Range(1e-6, 0.05, reason="hose, tube and port volume per cylinder of 1 ml to 50 l")
 

@@ -13,7 +13,10 @@ cylinder and include the dead (line) volume of each chamber.
 
 from __future__ import annotations
 
-from loader_model.parameter_schema import CylinderParameters, HydraulicParameters
+import math
+from typing import Any
+
+from loader_model.parameters.schema import CylinderParameters, HydraulicParameters
 
 __all__ = [
     "area_ratio",
@@ -21,6 +24,34 @@ __all__ = [
     "hydraulic_stiffness_n_per_m",
     "piston_position_m",
 ]
+
+
+def static_piston_pressure(
+    force_n: Any, count: Any, piston_diameter_m: Any, rod_diameter_m: Any, charge_pressure_pa: Any
+) -> Any:
+    r"""Piston-side pressure that holds the total cylinder force at rest, rod side at charge.
+
+    .. math:: p_{A0} = \frac{F_{act0} + n \alpha A_p p_c}{n A_p}, \qquad
+        A_p = \frac{\pi}{4} d_p^2, \quad \alpha A_p = A_p - \frac{\pi}{4} d_r^2
+
+    (force balance of Eq. 15 over the n cylinders, friction and end stops zero at rest). Works on
+    floats and on CasADi expressions: the plant's equilibrium and the parameter checks use it.
+
+    Parameters
+    ----------
+    force_n
+        Total static force of the cylinders, N (pushing positive).
+    count, piston_diameter_m, rod_diameter_m, charge_pressure_pa
+        Number of cylinders, bore and rod diameters in m, rod-side (charge) pressure in Pa.
+
+    Returns
+    -------
+    float or casadi expression
+        p_A0 in Pa (gauge).
+    """
+    piston = math.pi / 4 * piston_diameter_m**2
+    annulus = piston - math.pi / 4 * rod_diameter_m**2
+    return (force_n + count * annulus * charge_pressure_pa) / (count * piston)
 
 
 def area_ratio(cylinders: CylinderParameters) -> float:

@@ -1,8 +1,8 @@
 """Plausibility of the generated model's parameter values, with the ranges of the parameter files.
 
-:class:`loader_model.dynamics.LoaderDynamics` takes a flat mapping of the generated model's
+:class:`loader_model.vehicle.dynamics.LoaderDynamics` takes a flat mapping of the generated model's
 parameters (``m_1``, ``A_x``, ``k_Ay``, ...). Each name is checked against the range of the
-parameter-file field it comes from (:mod:`loader_model.parameter_schema`), so the runtime API
+parameter-file field it comes from (:mod:`loader_model.parameters.schema`), so the runtime API
 refuses what the files refuse, with the same range and reason.
 """
 
@@ -11,9 +11,9 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 
-from loader_model.parameter_checks import check_distinct, shown
-from loader_model.parameter_fields import COORDINATE, Range
-from loader_model.parameter_schema import (
+from loader_model.parameters.checks import check_distinct, shown
+from loader_model.parameters.fields import COORDINATE, Range
+from loader_model.parameters.schema import (
     AxleTyre,
     BoomParameters,
     BucketLoad,

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from loader_model.dynamics import COORDINATE_NAMES, LoaderDynamics
+from loader_model.vehicle.dynamics import COORDINATE_NAMES, LoaderDynamics
 
 __all__ = ["format_matrix", "model_summary"]
 

@@ -19,7 +19,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from loader_model.arrays import real_integer, real_number
+from loader_model.io.arrays import real_integer, real_number
 
 __all__ = [
     "COORDINATE",
@@ -128,10 +128,10 @@ class TypedLeaves:
     Every way a parameter value enters a parameter set (a TOML file, :func:`~loader_model.
     parameters.replace`, the dataclass built in code, :func:`dataclasses.replace`) constructs the
     dataclass, so this is where a value of the wrong type is refused, naming the class, the field,
-    the value and what is allowed: one real number (:func:`loader_model.arrays.real_number`: no
+    the value and what is allowed: one real number (:func:`loader_model.io.arrays.real_number`: no
     array, not even a one-element one, no boolean or string), an integer count, or ``shape`` real
     numbers for a point. Values are stored as Python floats, ints and tuples. Ranges and
-    consistency are checked by :func:`loader_model.parameters.validate`.
+    consistency are checked by :func:`loader_model.parameters.sets.validate`.
     """
 
     def __post_init__(self) -> None:

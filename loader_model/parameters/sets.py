@@ -1,13 +1,13 @@
 """Validated loader parameters: TOML files, updates by dotted path, and the model's values.
 
-The parameter sets are the frozen dataclasses of :mod:`loader_model.parameter_schema` (SI units,
+The parameter sets are the frozen dataclasses of :mod:`loader_model.parameters.schema` (SI units,
 chassis-frame points at the operating boom angle). A loader file (``default_loader.toml``) holds
 everything but the bucket load, which has one file per load case (``load_empty.toml``,
 ``load_full.toml``; section 5.3 of the paper: 340 kg and 770 kg).
 
 Examples
 --------
->>> from loader_model.parameters import bucket_load, default_loader, model_parameter_values
+>>> from loader_model.parameters.sets import bucket_load, default_loader, model_parameter_values
 >>> values = model_parameter_values(default_loader(), bucket_load("empty"))
 >>> round(values["m_2"] - default_loader().boom.mass, 6)
 340.0
@@ -25,14 +25,13 @@ from importlib import resources
 from pathlib import Path
 from typing import Any, TypeVar
 
-from loader_model.files import read_text
-from loader_model.parameter_checks import (
+from loader_model.io.files import read_text
+from loader_model.parameters.checks import (
     COINCIDENCE_TOLERANCE_M,
-    check_combination,
     check_loader,
     check_ranges,
 )
-from loader_model.parameter_schema import (
+from loader_model.parameters.schema import (
     AccumulatorParameters,
     AxleTyre,
     BoomParameters,
@@ -50,7 +49,7 @@ from loader_model.parameter_schema import (
     PumpParameters,
     TyreParameters,
 )
-from loader_model.parameter_toml import build, dumps, iter_leaves, leaf_metadata, to_raw
+from loader_model.parameters.toml_format import build, dumps, iter_leaves, leaf_metadata, to_raw
 
 __all__ = [
     "COINCIDENCE_TOLERANCE_M",
@@ -96,8 +95,8 @@ _LOAD_CASES = {"empty": "load_empty.toml", "full": "load_full.toml"}
 #: Names of the shipped bucket-load cases (paper section 5.3: 340 kg and 770 kg).
 LOAD_CASES: tuple[str, ...] = tuple(_LOAD_CASES)
 _HEADERS = {
-    LoaderParameters: "Loader parameters (loader_model.parameter_schema.LoaderParameters).",
-    BucketLoad: "Bucket load case (loader_model.parameter_schema.BucketLoad).",
+    LoaderParameters: "Loader parameters (loader_model.parameters.schema.LoaderParameters).",
+    BucketLoad: "Bucket load case (loader_model.parameters.schema.BucketLoad).",
 }
 _HEADER_FORMAT = (
     "\nEvery value: { value = <SI number>, unit = <its SI unit, checked on loading>, "
@@ -116,11 +115,11 @@ def validate(params: P) -> P:
     ValueError
         Naming the field by dotted path (``tyres.front.k_y``), the value, the allowed range and
         its reason: a value outside the plausible range of its field
-        (:mod:`loader_model.parameter_fields`), or a loader that is inconsistent
-        (:func:`loader_model.parameter_checks.check_loader`: rod too thick, barrel shorter than
+        (:mod:`loader_model.parameters.fields`), or a loader that is inconsistent
+        (:func:`loader_model.parameters.checks.check_loader`: rod too thick, barrel shorter than
         the stroke, coincident points, A not ahead of B, cylinder on or beyond an end stop).
         A loader with a bucket load is checked further by
-        :func:`loader_model.parameter_checks.check_combination`.
+        :func:`loader_model.vehicle.statics.check_combination`.
     """
     check_ranges(params)
     if isinstance(params, LoaderParameters):
@@ -139,7 +138,7 @@ def load_loader(path: str | Path) -> LoaderParameters:
     """Read and validate a loader parameter file (see :func:`save` for the layout).
 
     The file must be a readable regular file of UTF-8 text, with or without a byte-order mark
-    (:func:`loader_model.files.read_text`); every error names the file.
+    (:func:`loader_model.io.files.read_text`); every error names the file.
     """
     return _parse(LoaderParameters, read_text(path, "loader parameter file"), str(path))
 
@@ -154,9 +153,9 @@ def save(params: LoaderParameters | BucketLoad, path: str | Path) -> None:
     back equal (floats are written with ``repr``).
 
     The path must end in ``.toml``; the file is written atomically with the user's umask
-    permissions (:func:`loader_model.export.write_atomically`).
+    permissions (:func:`loader_model.io.export.write_atomically`).
     """
-    from loader_model.export import write_atomically
+    from loader_model.io.export import write_atomically
 
     text = dumps(to_raw(params), _HEADERS[type(params)] + _HEADER_FORMAT)
     write_atomically(
@@ -236,9 +235,7 @@ def combine_bodies(
     return mass, (gx, gy), inertia
 
 
-def model_parameter_values(
-    loader: LoaderParameters, load: BucketLoad, *, check: bool = True
-) -> dict[str, float]:
+def model_parameter_values(loader: LoaderParameters, load: BucketLoad) -> dict[str, float]:
     """Numeric values of the generated model's parameters, keyed by name.
 
     Body 1 is the chassis (m_1, J_1 about H); body 2 is the boom with the bucket load (m_2, J_2
@@ -247,15 +244,9 @@ def model_parameter_values(
     rear axle tyres (Eq. 1-4). The static tyre loads are computed elsewhere from the equilibrium.
     The order of the generated function's inputs belongs to ``derive``; use the names.
 
-    Raises
-    ------
-    ValueError
-        If ``check`` and the loader and the load are inconsistent at the static equilibrium (see
-        :func:`loader_model.parameter_checks.check_combination`, which itself evaluates the
-        equilibrium with ``check=False``).
+    Whether the two stand together at rest is not checked here (that needs the model's statics):
+    :func:`loader_model.vehicle.statics.check_combination` does it.
     """
-    if check:
-        check_combination(loader, load)
     boom, geo = loader.boom, loader.geometry
     m_2, cog, j_2 = combine_bodies(
         (boom.mass, load.mass), (boom.cog, load.cog), (boom.inertia, load.inertia)
@@ -280,7 +271,9 @@ def resolve_loader_and_load(
     """Resolve a loader and a bucket load given as objects, TOML paths or defaults.
 
     ``loader`` None is the shipped default loader; ``load`` may name a shipped case
-    (:data:`LOAD_CASES`: ``"empty"`` 340 kg, ``"full"`` 770 kg, section 5.3).
+    (:data:`LOAD_CASES`: ``"empty"`` 340 kg, ``"full"`` 770 kg, section 5.3). Each set is
+    valid alone; :func:`loader_model.vehicle.statics.resolve_machine` also checks that they
+    stand together.
     """
     if loader is None:
         loader = default_loader()
@@ -304,5 +297,4 @@ def resolve_loader_and_load(
             f"load must be a BucketLoad, a path to its TOML file or one of {list(LOAD_CASES)}; "
             f"got {load!r}"
         )
-    check_combination(loader, load)
     return loader, load

@@ -1,9 +1,9 @@
-"""Range and consistency checks of the parameter sets, run by :func:`loader_model.parameters.validate`.
+"""Range and consistency checks of the parameter sets, run by :func:`loader_model.parameters.sets.validate`.
 
-Ranges come from each field's metadata (:mod:`loader_model.parameter_fields`); the consistency
-checks here are those that involve several fields. :func:`check_combination` checks a loader
-together with a bucket load at the static equilibrium (hand statics, no generated code), so that
-nothing that validates fails later in the model for a reason validation could have seen.
+Ranges come from each field's metadata (:mod:`loader_model.parameters.fields`); the consistency
+checks here are those that involve several fields of one set. Whether a loader and a bucket load
+stand together at rest needs the model's statics: :func:`loader_model.vehicle.statics.check_combination`
+checks that one layer up, so this layer imports nothing of the model.
 """
 
 from __future__ import annotations
@@ -13,20 +13,17 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
-from loader_model.parameter_schema import BucketLoad, LoaderParameters, Point
-from loader_model.parameter_toml import iter_leaves, leaf_metadata
+from loader_model.parameters.schema import BucketLoad, LoaderParameters, Point
+from loader_model.parameters.toml_format import iter_leaves, leaf_metadata
 
 __all__ = [
     "COINCIDENCE_TOLERANCE_M",
     "END_STOP_MARGIN_M",
     "MAX_ROD_TO_PISTON_RATIO",
-    "MAX_STATIC_PRESSURE_PA",
-    "check_combination",
     "check_distinct",
     "check_hydraulics",
     "check_loader",
     "check_ranges",
-    "static_equilibrium",
 ]
 
 #: Two points closer than this are taken as coincident (degenerate geometry), in m.
@@ -37,15 +34,6 @@ END_STOP_MARGIN_M = 1e-3
 #: Largest rod-to-bore ratio: the annulus keeps at least 19 % of the piston area (area ratios of
 #: built cylinders are 1.1 to about 5).
 MAX_ROD_TO_PISTON_RATIO = 0.9
-#: Largest static piston-side pressure, Pa (500 bar, above the relief setting of mobile hydraulics).
-MAX_STATIC_PRESSURE_PA = 5e7
-
-
-_PRESSURE_FIELDS = (
-    "boom.mass, boom.cog, load.mass, load.cog, geometry.C, geometry.D, geometry.E, "
-    "cylinders.count, cylinders.piston_diameter, cylinders.rod_diameter, "
-    "hydraulics.charge_pressure and environment.gravity"
-)
 
 
 def _get(obj: Any, path: str) -> Any:
@@ -141,84 +129,4 @@ def check_loader(params: LoaderParameters) -> None:
             f"geometry.C, geometry.E: cylinder length |E - C| = {length:.6g} m at the operating point is "
             f"outside [{low:.6g}, {high:.6g}] m (cylinders.retracted_length to + cylinders.stroke, "
             f"{END_STOP_MARGIN_M * 1e3:g} mm clear of each end stop)"
-        )
-
-
-def static_equilibrium(loader: LoaderParameters, load: BucketLoad) -> dict[str, float]:
-    """Static tyre loads, cylinder force and piston pressure of the plant at p = 0.
-
-    Evaluated by the plant's own equilibrium (generated ``complete_parameters`` and
-    :func:`loader_model.plant.equilibrium.equilibrium_function`), so validation and simulation
-    agree by construction; ``tests/test_parameter_ranges.py`` checks it against hand statics.
-
-    Returns
-    -------
-    dict
-        ``F_Ay0``, ``F_By0`` (N, positive in compression), ``F_act0`` (N), ``p_A0`` (Pa gauge, the
-        piston-side pressure with the rod side at the charge pressure) and the combined centre of
-        gravity ``G`` of boom and load.
-    """
-    import loader_model_generated as generated
-    from loader_model.parameters import combine_bodies
-    from loader_model.plant.equilibrium import equilibrium_function
-    from loader_model.plant.plant_parameters import plant_parameter_vector
-
-    params = plant_parameter_vector(loader, load, check=False)
-    state, _, force = equilibrium_function()(params)
-    completed, _ = generated.function("complete_parameters")(
-        params[: len(generated.PARAMETER_NAMES)]
-    )
-    names = generated.PARAMETER_NAMES
-    boom = loader.boom
-    _, cog, _ = combine_bodies(
-        (boom.mass, load.mass), (boom.cog, load.cog), (boom.inertia, load.inertia)
-    )
-    return {
-        "F_Ay0": float(completed[names.index("F_Ay0")]),
-        "F_By0": float(completed[names.index("F_By0")]),
-        "F_act0": float(force),
-        "p_A0": float(state[10]),
-        "G": cog,
-    }
-
-
-def check_combination(loader: LoaderParameters, load: BucketLoad) -> None:
-    """Consistency of a loader with a bucket load at the static equilibrium.
-
-    Raises
-    ------
-    ValueError
-        If the combined centre of gravity coincides with a point, an axle lifts off (the machine
-        tips), the cylinder would have to pull or hold more than
-        :data:`MAX_STATIC_PRESSURE_PA`, or the accumulator precharge is not below the static
-        piston pressure (it would hold no oil).
-    """
-    statics = static_equilibrium(loader, load)
-    geo = loader.geometry
-    check_distinct(
-        {f"geometry.{n}": getattr(geo, n) for n in "ABCDE"}
-        | {"combined G of boom.cog and load.cog": statics["G"]}
-    )
-    where = f"bucket load of {load.mass:g} kg at cog {load.cog}"
-    for axle, key in (("front (A)", "F_Ay0"), ("rear (B)", "F_By0")):
-        if not statics[key] > 0.0:
-            raise ValueError(
-                f"{where}: the static {axle} axle load is {statics[key]:.4g} N; allowed: > 0 "
-                "(the machine must stand on both axles; check chassis.mass, boom.mass, boom.cog, "
-                "load.mass, load.cog, geometry.A and geometry.B)"
-            )
-    pressure = statics["p_A0"]
-    if not (statics["F_act0"] > 0.0 and pressure <= MAX_STATIC_PRESSURE_PA):
-        raise ValueError(
-            f"{where}: the static lift-cylinder force is {statics['F_act0']:.4g} N, piston "
-            f"pressure {pressure / 1e5:.4g} bar; allowed: a pushing force with at most "
-            f"{MAX_STATIC_PRESSURE_PA / 1e5:g} bar (the piston side carries the boom; check "
-            f"{_PRESSURE_FIELDS})"
-        )
-    precharge = loader.accumulator.precharge_pressure
-    if precharge >= pressure:
-        raise ValueError(
-            f"accumulator.precharge_pressure = {precharge!r} Pa must be below the static piston "
-            f"pressure {pressure:.6g} Pa with the {where} (a higher precharge holds no oil; "
-            f"the static pressure depends on {_PRESSURE_FIELDS})"
         )

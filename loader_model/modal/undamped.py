@@ -15,8 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from loader_model.cylinder import hydraulic_stiffness_n_per_m
-from loader_model.parameters import BucketLoad, LoaderParameters
+from loader_model.parameters.sets import BucketLoad, LoaderParameters
+from loader_model.vehicle.cylinder import hydraulic_stiffness_n_per_m
 
 __all__ = ["UndampedMatrices", "undamped_matrices"]
 
@@ -44,7 +44,7 @@ def undamped_matrices(
     Parameters
     ----------
     loader, load
-        Validated parameter sets (see :mod:`loader_model.parameters`).
+        Validated parameter sets (see :mod:`loader_model.parameters.sets`).
     gravity_stiffness
         Keep the geometric stiffness of gravity and the static loads (physical); ``False`` drops
         it by setting g = 0, as the paper's Eq. 33-34 do.
@@ -74,7 +74,7 @@ def _gravity_stiffness(params: np.ndarray) -> np.ndarray:
     of −M ∂p̈/∂p of the generated linearisation (linear tyres, constant cylinder force) when g
     goes to 0. The plant itself cannot drop g: its tyres would lose their static load."""
     import loader_model_generated as generated
-    from loader_model.dynamics import LoaderDynamics
+    from loader_model.vehicle.dynamics import LoaderDynamics
 
     names = generated.PARAMETER_NAMES
     values = dict(zip(names, params[: len(names)], strict=True))

@@ -15,8 +15,8 @@ from typing import Any
 import numpy as np
 
 import loader_model_generated as generated
-from loader_model.arrays import finite_scalar, finite_vector
-from loader_model.model_parameter_checks import check_model_parameters
+from loader_model.io.arrays import finite_scalar, finite_vector
+from loader_model.parameters.model_checks import check_model_parameters
 
 __all__ = [
     "COORDINATE_NAMES",
@@ -77,7 +77,7 @@ class LinearModel:
 
     def save(self, path: str | Path) -> Path:
         """Export A, B, E, C, D_u, D_w and the signal names to ``.npz`` or ``.mat`` (atomic)."""
-        from loader_model.export import save_arrays
+        from loader_model.io.export import save_arrays
 
         return save_arrays(
             path,
@@ -150,9 +150,9 @@ class LoaderDynamics:
     ValueError
         On a missing or unknown parameter; a value that is not one finite real number (a Python
         or NumPy int or float; not an array, even of one element, a boolean or a string,
-        :func:`loader_model.arrays.real_number`); a value outside the plausible range of
+        :func:`loader_model.io.arrays.real_number`); a value outside the plausible range of
         the parameter-file field it comes from, coincident points or A not ahead of B
-        (:func:`loader_model.model_parameter_checks.check_model_parameters`); a static axle load
+        (:func:`loader_model.parameters.model_checks.check_model_parameters`); a static axle load
         that is not compressive; or a mass matrix that is not positive definite at p = 0.
     """
 
@@ -211,16 +211,17 @@ class LoaderDynamics:
         Parameters
         ----------
         loader
-            A :class:`loader_model.parameters.LoaderParameters`, a path to its TOML file, or
+            A :class:`loader_model.parameters.sets.LoaderParameters`, a path to its TOML file, or
             None for the default loader.
         load
-            A :class:`loader_model.parameters.BucketLoad`, a path to its TOML file, or the name of
+            A :class:`loader_model.parameters.sets.BucketLoad`, a path to its TOML file, or the name of
             a shipped load case (``"empty"``: 340 kg, ``"full"``: 770 kg, paper section 5.3).
         """
-        from loader_model import parameters
+        from loader_model.parameters import model_parameter_values
+        from loader_model.vehicle.statics import resolve_machine
 
-        loader, load = parameters.resolve_loader_and_load(loader, load)
-        return cls(parameters.model_parameter_values(loader, load))
+        loader, load = resolve_machine(loader, load)
+        return cls(model_parameter_values(loader, load))
 
     def _check_mass_matrix(self) -> None:
         mass = self.mass_matrix(np.zeros(4))

@@ -3,7 +3,7 @@
 The paper does not publish geometry or masses. The default loader's geometry and masses are the
 values Table 1 implies (rounded; see the sources in ``data/default_loader.toml``); the calibration
 fits the six least-known parameters below within physically plausible bounds, on the generated model
-(:func:`loader_model.undamped.undamped_matrices`), reading Table 1's columns as momentum shapes M·φ
+(:func:`loader_model.modal.undamped.undamped_matrices`), reading Table 1's columns as momentum shapes M·φ
 (DESIGN.md errata 7). ``loader-model calibrate`` runs it and writes the result as a TOML file.
 """
 
@@ -13,9 +13,9 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from functools import reduce
 
-from loader_model.calibration import CalibrationResult, calibrate
-from loader_model.parameters import BucketLoad, LoaderParameters, replace
-from loader_model.undamped import undamped_matrices
+from loader_model.modal.calibration import CalibrationResult, calibrate
+from loader_model.modal.undamped import undamped_matrices
+from loader_model.parameters.sets import BucketLoad, LoaderParameters, replace
 
 __all__ = ["FREE_PARAMETERS", "FreeParameter", "calibrate_to_table_1"]
 
@@ -91,7 +91,7 @@ def calibrate_to_table_1(
     Returns
     -------
     result : CalibrationResult
-        Fitted values, frequencies, errors and MACs (see :mod:`loader_model.calibration`).
+        Fitted values, frequencies, errors and MACs (see :mod:`loader_model.modal.calibration`).
     calibrated : LoaderParameters
         ``loader`` with the fitted values written in, each with a source naming the calibration.
     """

@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-from loader_model.modal import TABLE_1, ModalResult, compare_with_table_1
-from loader_model.undamped import UndampedMatrices
+from loader_model.modal.modes import TABLE_1, ModalResult, compare_with_table_1
+from loader_model.modal.undamped import UndampedMatrices
 
 __all__ = ["format_modes"]
 
