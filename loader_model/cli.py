@@ -46,8 +46,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``loader-model`` command; returns the process exit code."""
     parser = build_parser()
     args = parser.parse_args(argv)
+    from loader_model.processes import interrupt_message, sigterm_interrupts
+
     try:
-        return int(args._run(args))
+        with sigterm_interrupts():  # SIGTERM ends a command like Ctrl-C
+            return int(args._run(args))
+    except KeyboardInterrupt as error:  # one line: what was interrupted and what was kept
+        message, code = interrupt_message(error)
+        print(f"loader-model {args.command}: {message}", file=sys.stderr)
+        return code
     except BrokenPipeError:  # output piped into e.g. `head`, which closed early
         sys.stderr.close()
         return 0
