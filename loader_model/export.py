@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from loader_model import staging
+from loader_model.interrupts import check_interrupt
 
 __all__ = ["ARRAY_SUFFIXES", "check_output_path", "save_arrays", "write_atomically"]
 
@@ -114,6 +115,7 @@ def write_atomically(
     try:
         write(Path(temporary))
         os.chmod(temporary, mode)
+        check_interrupt()  # after an interrupt (caught by code in between) nothing is written
         os.replace(temporary, target)
     except OSError as error:
         raise ValueError(

@@ -1,101 +1,76 @@
-"""Worker processes that end with their parent, and interrupts that end a command cleanly.
+"""Worker processes that end with their parent, whichever way it ends.
 
-:func:`worker_pool` is a :class:`~concurrent.futures.ProcessPoolExecutor` whose workers
+:func:`worker_pool` gives a :class:`WorkerPool` (a
+:class:`~concurrent.futures.ProcessPoolExecutor`) whose workers
 
 - ignore SIGINT, so that Ctrl-C (sent by the terminal to the whole process group) reaches only
-  the parent, which reports it in one line, and SIGTERM kills them (its default);
-- end when the parent ends, however it ends, SIGKILL included: on Linux the kernel sends them
-  SIGKILL when the parent dies (``prctl(PR_SET_PDEATHSIG)``, set when the pool is made in the main
-  thread: the signal follows the thread that started the worker); everywhere a watchdog thread
-  polls ``os.getppid()`` every :data:`WATCHDOG_POLL_S` and ends the worker once it changes (it runs
-  whenever the worker's simulation releases the GIL);
+  the parent, which reports it in one line (:mod:`loader_model.interrupts`), and SIGTERM kills
+  them (its default). They are started at once with SIGINT and SIGTERM blocked in the starting
+  thread; they inherit the block until their start has set the above (and the parent gets a
+  signal that came meanwhile once it lifts its block), so a Ctrl-C while they start or import
+  prints no traceback of theirs. (Spawned workers need multiprocessing's resource tracker running
+  beforehand: starting it lifts the block of the calling thread.);
+- end when the parent ends, SIGKILL included: on Linux the kernel sends them SIGKILL when the
+  parent dies (``prctl(PR_SET_PDEATHSIG)``, set when the pool is made in the main thread: the
+  signal follows the thread that started the worker); everywhere a watchdog thread polls
+  ``os.getppid()`` every :data:`WATCHDOG_POLL_S` and ends the worker once it changes (it runs
+  whenever the worker's computation lets go of the GIL);
 - are stopped at once when the ``with`` block ends with an exception (an interrupt or an error):
   queued tasks are cancelled and running workers terminated, not waited for.
 
-:class:`Interrupted` is the :class:`KeyboardInterrupt` a command raises with what it kept (e.g.
-"the finished batches are saved"); :func:`sigterm_interrupts` turns SIGTERM into one for the
-duration of a command, so that ``kill`` ends it like Ctrl-C. The command line
-(:func:`loader_model.cli.main`) prints :func:`interrupt_message` and exits with 128 + the signal's
-number (130 for SIGINT, 143 for SIGTERM), as shells do.
+:meth:`WorkerPool.submit` and :meth:`WorkerPool.completed` (in place of
+:func:`~concurrent.futures.as_completed`) hold interrupts back while they hold the pool's locks
+(:func:`~loader_model.interrupts.deferred_interrupts`), so that an interrupt cannot leave one held,
+and raise one that came meanwhile, also one that other code caught
+(:func:`~loader_model.interrupts.check_interrupt`).
 """
 
 from __future__ import annotations
 
 import contextlib
 import ctypes
+import multiprocessing
 import os
 import signal
 import sys
 import threading
 import time
-from collections.abc import Callable, Iterator, Sequence
-from concurrent.futures import ProcessPoolExecutor
+from collections.abc import Callable, Iterable, Iterator
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from typing import Any
 
-__all__ = [
-    "WATCHDOG_POLL_S",
-    "Interrupted",
-    "files_note",
-    "interrupt_message",
-    "interrupted",
-    "sigterm_interrupts",
-    "stop_workers",
-    "worker_pool",
-]
+from loader_model.interrupts import check_interrupt, deferred_interrupts
+
+__all__ = ["WAIT_POLL_S", "WATCHDOG_POLL_S", "WorkerPool", "stop_workers", "worker_pool"]
 
 #: Interval in s at which a worker's watchdog checks that its parent still runs.
 WATCHDOG_POLL_S = 0.2
+#: Longest wait in s of :meth:`WorkerPool.completed` before a held-back interrupt acts.
+WAIT_POLL_S = 0.25
 _PR_SET_PDEATHSIG = 1
+_STOP_SIGNALS = {signal.SIGINT, signal.SIGTERM}
 
 
-class Interrupted(KeyboardInterrupt):
-    """An interrupt by ``signal_number`` (SIGINT or SIGTERM); ``kept`` says what the
-    interrupted command left in place, for the user (empty: nothing to say)."""
+class WorkerPool(ProcessPoolExecutor):
+    """A process pool whose calls from this process cannot be cut by an interrupt halfway
+    (module notes); made by :func:`worker_pool`."""
 
-    def __init__(self, signal_number: int = signal.SIGINT, kept: str = "") -> None:
-        super().__init__(signal_number, kept)
-        self.signal_number = int(signal_number)
-        self.kept = kept
+    def submit(self, fn: Callable[..., Any], /, *args: Any, **kwargs: Any) -> Future:
+        """:meth:`ProcessPoolExecutor.submit` with interrupts held back during the call."""
+        with deferred_interrupts():
+            future = super().submit(fn, *args, **kwargs)
+        check_interrupt()
+        return future
 
-
-def interrupted(error: KeyboardInterrupt, kept: str) -> Interrupted:
-    """The interrupt ``error`` (of whichever signal) with ``kept`` as what was kept."""
-    return Interrupted(getattr(error, "signal_number", signal.SIGINT), kept)
-
-
-def files_note(wanted: Sequence[str | None], written: Sequence[str]) -> str:
-    """What an interrupted command kept of the files ``wanted`` (None: not asked for), given
-    those ``written``: ``"wrote 'a'; nothing written to 'b'"``."""
-    missing = [repr(path) for path in wanted if path is not None and path not in written]
-    parts = [f"wrote {', '.join(map(repr, written))}"] if written else []
-    parts += [f"nothing written to {', '.join(missing)}"] if missing else []
-    return "; ".join(parts) or "nothing written"
-
-
-def interrupt_message(error: KeyboardInterrupt) -> tuple[str, int]:
-    """One line for the user and the exit code (128 + signal number) of an interrupt."""
-    number = int(getattr(error, "signal_number", signal.SIGINT))
-    kept = getattr(error, "kept", "") or "no partial file was left"
-    what = "interrupted" if number == signal.SIGINT else f"stopped by {signal.Signals(number).name}"
-    return f"{what}; {kept}", 128 + number
-
-
-@contextlib.contextmanager
-def sigterm_interrupts() -> Iterator[None]:
-    """Within the block, SIGTERM raises :class:`Interrupted` in the main thread (elsewhere, or
-    where signals cannot be handled, nothing changes); the previous handler is restored."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-
-    def handler(number: int, frame: Any) -> None:
-        raise Interrupted(number)
-
-    previous = signal.signal(signal.SIGTERM, handler)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, previous)
+    def completed(self, futures: Iterable[Future]) -> Iterator[Future]:
+        """The ``futures`` as they complete, like :func:`~concurrent.futures.as_completed`; an
+        interrupt acts within :data:`WAIT_POLL_S` while it waits."""
+        pending = set(futures)
+        while pending:
+            with deferred_interrupts():
+                done, pending = wait(pending, timeout=WAIT_POLL_S, return_when=FIRST_COMPLETED)
+            check_interrupt()  # also one that code of this process caught meanwhile
+            yield from done
 
 
 def _set_parent_death_signal() -> bool:
@@ -124,6 +99,8 @@ def _start_worker(
     """Worker start (module notes), then ``initializer(*initargs)``."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)  # a forked worker inherits the parent's handler
+    if hasattr(signal, "pthread_sigmask"):  # blocked by _start_workers: pending ones act now
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, _STOP_SIGNALS)
     if death_signal:
         _set_parent_death_signal()
     if os.getppid() != parent_pid:  # the parent died before the death signal was set
@@ -133,21 +110,44 @@ def _start_worker(
         initializer(*initargs)
 
 
+def _start_workers(pool: WorkerPool, workers: int, forked: bool) -> None:
+    """Start the ``workers`` processes now (one no-op task each) with SIGINT and SIGTERM blocked
+    in this thread (module notes); :func:`_start_worker` sets the workers' own handling."""
+    if not hasattr(signal, "pthread_sigmask"):
+        return
+    if not forked:
+        from multiprocessing import resource_tracker
+
+        resource_tracker.ensure_running()
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, _STOP_SIGNALS)
+    try:
+        for _ in range(workers):
+            pool.submit(int)
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+
+
 def stop_workers(pool: ProcessPoolExecutor, grace_s: float = 2.0) -> None:
     """Cancel the queued tasks of ``pool`` and end its workers: SIGTERM, then SIGKILL for any
-    still running after ``grace_s``; returns once they have ended."""
-    processes = list((getattr(pool, "_processes", None) or {}).values())
-    pool.shutdown(wait=False, cancel_futures=True)
-    for process in processes:
-        with contextlib.suppress(OSError, ValueError, AttributeError):
-            process.terminate()
-    deadline = time.monotonic() + grace_s
-    for process in processes:
-        with contextlib.suppress(OSError, ValueError, AttributeError, AssertionError):
-            process.join(max(deadline - time.monotonic(), 0.0))
-            if process.is_alive():
-                process.kill()
-                process.join(grace_s)
+    still running after ``grace_s``; returns once they and the pool's thread have ended
+    (interrupts held back). Waiting for that thread avoids a race in Python 3.11's exit, which may
+    write to the thread's closed wake-up pipe ("Exception ignored ... Bad file descriptor")."""
+    with deferred_interrupts():
+        processes = list((getattr(pool, "_processes", None) or {}).values())
+        manager = getattr(pool, "_executor_manager_thread", None)
+        pool.shutdown(wait=False, cancel_futures=True)
+        for process in processes:
+            with contextlib.suppress(OSError, ValueError, AttributeError):
+                process.terminate()
+        deadline = time.monotonic() + grace_s
+        for process in processes:
+            with contextlib.suppress(OSError, ValueError, AttributeError, AssertionError):
+                process.join(max(deadline - time.monotonic(), 0.0))
+                if process.is_alive():
+                    process.kill()
+                    process.join(grace_s)
+        if manager is not None:
+            manager.join(grace_s)
 
 
 @contextlib.contextmanager
@@ -158,13 +158,13 @@ def worker_pool(
     initargs: tuple[Any, ...] = (),
     mp_context: Any = None,
     death_signal: bool | None = None,
-) -> Iterator[ProcessPoolExecutor]:
+) -> Iterator[WorkerPool]:
     """A process pool whose workers end with this process (module notes).
 
     Parameters
     ----------
     workers : int
-        Number of worker processes.
+        Number of worker processes, started at once.
     initializer, initargs
         Run in each worker after its start (a module-level function for spawned workers).
     mp_context : multiprocessing context, optional
@@ -175,19 +175,21 @@ def worker_pool(
 
     Yields
     ------
-    concurrent.futures.ProcessPoolExecutor
+    WorkerPool
         Shut down (waiting for its tasks) when the block ends normally; stopped by
         :func:`stop_workers` when it ends with an exception, which then propagates.
     """
     if death_signal is None:
         death_signal = threading.current_thread() is threading.main_thread()
-    pool = ProcessPoolExecutor(
+    context = mp_context or multiprocessing.get_context()
+    pool = WorkerPool(
         workers,
-        mp_context=mp_context,
+        mp_context=context,
         initializer=_start_worker,
         initargs=(os.getpid(), bool(death_signal), initializer, tuple(initargs)),
     )
     try:
+        _start_workers(pool, workers, context.get_start_method() == "fork")
         yield pool
     except BaseException:
         stop_workers(pool)

@@ -102,13 +102,11 @@ def _refine(args: argparse.Namespace, start, loads, params):
 def run(args: argparse.Namespace) -> int:
     """Design, print gains / costs / poles / margins, write the figure atomically; an interrupt
     (Ctrl-C, SIGTERM) says which of the files were written."""
-    from loader_model.processes import files_note, interrupted
+    from loader_model.interrupts import files_note, keeping
 
     written: list[str] = []
-    try:
+    with keeping(lambda: files_note((args.output, args.plot), written)):
         return _design(args, written)
-    except KeyboardInterrupt as error:
-        raise interrupted(error, files_note((args.output, args.plot), written)) from None
 
 
 def _design(args: argparse.Namespace, written: list[str]) -> int:

@@ -252,12 +252,10 @@ def _synthesize(args: argparse.Namespace, written: list[str]) -> int:
 def run(args: argparse.Namespace) -> int:
     """Run ``identify friction|leakage|synthesize``; returns 0. An interrupt (Ctrl-C, SIGTERM)
     says which of the files were written."""
-    from loader_model.processes import files_note, interrupted
+    from loader_model.interrupts import files_note, keeping
 
     written: list[str] = []
     synthesize = args.identify_action == "synthesize"
-    try:
+    wanted = (args.output,) if synthesize else (args.plot, args.update)
+    with keeping(lambda: files_note(wanted, written)):
         return _synthesize(args, written) if synthesize else _fit(args, written)
-    except KeyboardInterrupt as error:
-        wanted = (args.output,) if synthesize else (args.plot, args.update)
-        raise interrupted(error, files_note(wanted, written)) from None

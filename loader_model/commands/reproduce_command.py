@@ -51,7 +51,7 @@ def run(args: argparse.Namespace) -> int:
 
     from loader_model.experiments.report import ReportOptions, markdown_table, write_report
     from loader_model.experiments.reproduction import build_reproduction
-    from loader_model.processes import interrupted
+    from loader_model.interrupts import keeping
 
     if args.jobs < 1 or args.jobs > max(os.cpu_count() or 1, 1) * 4:
         raise ValueError(f"--jobs must be in [1, {(os.cpu_count() or 1) * 4}]; got {args.jobs}")
@@ -67,14 +67,11 @@ def run(args: argparse.Namespace) -> int:
     def build(folder):
         summary.update(build_reproduction(folder, options))
 
-    existed = Path(args.output).is_dir()
-    try:
+    output = repr(args.output)
+    kept = f"the report in {output} is unchanged" if Path(args.output).is_dir() else ""
+    with keeping(lambda: kept or f"nothing written to {output}"):
         _print_model()
         path = write_report(args.output, build)
-    except KeyboardInterrupt as error:
-        output = repr(args.output)
-        kept = f"the report in {output} is unchanged" if existed else f"nothing written to {output}"
-        raise interrupted(error, kept) from None
     print("=== Table 6: change of a_total against the baseline (model beside paper) ===")
     print(markdown_table(summary["tables"]["table6"]))
     print(

@@ -7,7 +7,8 @@ from them), ``results.parquet`` and ``results.csv`` (one row per sample and cont
 ``gains.json`` (the K_fb each gain-based controller ran with) and ``report.md`` (change of a_total
 per controller, probability of worse comfort, worst cases, Spearman rank correlations, stability
 margin of the gains, failures). The study file is checked completely before anything runs or is
-written.
+written. An interrupt (Ctrl-C, SIGTERM) stops the workers at once and says how many samples are
+saved; rerunning the same command resumes.
 """
 
 from __future__ import annotations
@@ -75,7 +76,7 @@ def run(args: argparse.Namespace) -> int:
     if not folder.parent.is_dir():
         raise ValueError(f"--output {str(folder)!r}: the folder {str(folder.parent)!r} is missing")
     from loader_model.export import write_atomically
-    from loader_model.processes import interrupted
+    from loader_model.interrupts import keeping
     from loader_model.robustness.engine import read_gains, run_study
     from loader_model.robustness.report import report_text
 
@@ -88,11 +89,10 @@ def run(args: argparse.Namespace) -> int:
         except (OSError, ValueError) as error:
             raise ValueError(f"--scheduler {args.scheduler!r}: cannot connect: {error}") from None
     try:
-        table = run_study(
-            study, folder, workers=workers, scheduler=client, progress=not args.no_progress
-        )
-    except KeyboardInterrupt as error:
-        raise interrupted(error, _kept(study, folder)) from None
+        with keeping(lambda: _kept(study, folder)):
+            table = run_study(
+                study, folder, workers=workers, scheduler=client, progress=not args.no_progress
+            )
     finally:
         if client is not None:
             client.close()

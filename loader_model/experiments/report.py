@@ -19,6 +19,7 @@ from pathlib import Path
 from loader_model import staging
 from loader_model.experiments.table6 import LOAD_LABELS, SPEED_LABELS, Table6Cell
 from loader_model.experiments.tables import Rows
+from loader_model.interrupts import check_interrupt
 
 __all__ = [
     "FIDELITY_POINTS",
@@ -157,6 +158,7 @@ def write_report(destination: str | Path, build: Callable[[Path], None]) -> Path
     temporary = staging.make_staging_folder(destination)
     try:
         build(temporary)
+        check_interrupt()  # an interrupt that code in build caught: not a report to keep
         _replace_folder(temporary, destination)
     except BaseException:
         shutil.rmtree(temporary, ignore_errors=True)

@@ -11,7 +11,6 @@ with or without additional damping"), the block with −1.3, 6.0, 2.5.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from concurrent.futures import as_completed
 from dataclasses import dataclass
 
 import numpy as np
@@ -131,7 +130,7 @@ def run_trials(
                 futures = [pool.submit(_run_chunk, batch) for batch in batches]
                 if meanwhile is not None:
                     meanwhile()
-                for future in as_completed(futures):
+                for future in pool.completed(futures):
                     collect(future.result())
     finally:
         bar.close()

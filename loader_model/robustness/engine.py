@@ -89,7 +89,6 @@ def _local(study: Study, gains: Gains, batches: list, workers: int, save: Any) -
             save(batch, run_batch(study, gains, batch))
         return
     import multiprocessing
-    from concurrent.futures import as_completed
     from concurrent.futures.process import BrokenProcessPool
 
     from loader_model.processes import worker_pool
@@ -98,7 +97,7 @@ def _local(study: Study, gains: Gains, batches: list, workers: int, save: Any) -
     with _single_thread_environment(), worker_pool(workers, mp_context=context) as pool:
         futures = {pool.submit(run_batch, study, gains, batch): batch for batch in batches}
         try:
-            for future in as_completed(futures):
+            for future in pool.completed(futures):
                 save(futures[future], future.result())
         except BrokenProcessPool as error:
             raise ValueError(
