@@ -6,7 +6,8 @@ may catch the exception (CasADi's integrators turn a KeyboardInterrupt in their 
 into a RuntimeError "CV_RHSFUNC_FAIL"), so :func:`check_interrupt` raises it again where results
 are collected or written, and :func:`keeping` turns any exception raised after an interrupt into
 the interrupt, with what the command kept. A signal that comes while an interrupt is being
-handled (a second Ctrl-C during the clean-up) is remembered, not raised. The command line prints
+handled (a second Ctrl-C during the clean-up) is remembered, not raised; one raised in a
+finaliser, which Python drops, is raised again right after. The command line prints
 :func:`interrupt_message` and exits with 128 + the signal's number (130 for SIGINT, 143 for
 SIGTERM), as shells do.
 
@@ -20,6 +21,7 @@ act right after.
 
 from __future__ import annotations
 
+import _thread
 import contextlib
 import signal
 import sys
@@ -119,7 +121,19 @@ def command_interrupts() -> Iterator[None]:
         if not _handling_interrupt():
             raise Interrupted(number)
 
+    def unraisable(info: Any) -> None:
+        """An interrupt raised in a finaliser or weakref callback is dropped by Python (with
+        "Exception ignored in ..."): quietly raise it again once this hook has returned (a
+        signal tripped in here would be handled in here)."""
+        if isinstance(info.exc_value, Interrupted):
+            timer = threading.Timer(0.01, _thread.interrupt_main, (info.exc_value.signal_number,))
+            timer.daemon = True
+            timer.start()
+        else:
+            hook(info)
+
     previous = {n: signal.getsignal(n) for n in _STOP_SIGNALS}
+    hook, sys.unraisablehook = sys.unraisablehook, unraisable
     _REQUESTED.clear()
     try:
         for number in _STOP_SIGNALS:
@@ -128,6 +142,7 @@ def command_interrupts() -> Iterator[None]:
     finally:
         for number, handler_before in previous.items():
             signal.signal(number, signal.SIG_DFL if handler_before is None else handler_before)
+        sys.unraisablehook = hook
         _REQUESTED.clear()
 
 

@@ -36,7 +36,7 @@ import sys
 import threading
 import time
 from collections.abc import Callable, Iterable, Iterator
-from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from concurrent.futures import Future, ProcessPoolExecutor, as_completed
 from typing import Any
 
 from loader_model.interrupts import check_interrupt, deferred_interrupts
@@ -67,10 +67,25 @@ class WorkerPool(ProcessPoolExecutor):
         interrupt acts within :data:`WAIT_POLL_S` while it waits."""
         pending = set(futures)
         while pending:
-            with deferred_interrupts():
-                done, pending = wait(pending, timeout=WAIT_POLL_S, return_when=FIRST_COMPLETED)
-            check_interrupt()  # also one that code of this process caught meanwhile
-            yield from done
+            waiting = as_completed(pending, timeout=WAIT_POLL_S)  # waits on all: once per round
+            try:
+                while future := self._next(waiting):
+                    pending.discard(future)
+                    yield future
+            finally:
+                with deferred_interrupts():
+                    waiting.close()
+
+    @staticmethod
+    def _next(waiting: Iterator[Future]) -> Future | None:
+        """The next completed future of ``waiting``; None at its end or timeout."""
+        with deferred_interrupts():  # as_completed takes the futures' locks
+            try:
+                future = next(waiting, None)
+            except TimeoutError:
+                future = None
+        check_interrupt()  # also one that code of this process caught meanwhile
+        return future
 
 
 def _set_parent_death_signal() -> bool:

@@ -5,6 +5,7 @@ must not be cut halfway. Signals are real (``signal.raise_signal``), sent to thi
 from __future__ import annotations
 
 import signal
+import time
 from pathlib import Path
 
 import pytest
@@ -156,3 +157,19 @@ def test_a_deferred_sigterm_acts_through_the_command_handler() -> None:
     with pytest.raises(Interrupted) as caught, command_interrupts(), deferred_interrupts():
         signal.raise_signal(signal.SIGTERM)
     assert caught.value.signal_number == signal.SIGTERM
+
+
+class _Finalised:
+    def __del__(self) -> None:
+        signal.raise_signal(signal.SIGINT)  # the interrupt is raised in the finaliser
+
+
+def test_an_interrupt_in_a_finaliser_is_raised_again_quietly(capsys) -> None:
+    reached = []
+    with pytest.raises(Interrupted), command_interrupts():
+        _Finalised()  # dropped at once; Python drops what its finaliser raises
+        for step in range(1000):
+            reached.append(step)
+            time.sleep(0.01)
+    assert len(reached) < 1000  # raised again soon (after about 10 ms), not at the end
+    assert capsys.readouterr().err == ""  # no "Exception ignored in ..."
