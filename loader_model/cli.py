@@ -46,20 +46,39 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``loader-model`` command; returns the process exit code."""
     parser = build_parser()
     args = parser.parse_args(argv)
-    try:
-        return int(args._run(args))
-    except BrokenPipeError:  # output piped into e.g. `head`, which closed early
-        sys.stderr.close()
-        return 0
-    except ValueError as error:
-        print(f"loader-model {args.command}: error: {error}", file=sys.stderr)
-        return 2
-    except OSError as error:  # backstop: the file checks should have said it first
-        where = f"{error.filename}: " if error.filename else ""
-        print(
-            f"loader-model {args.command}: error: {where}{error.strerror or error}", file=sys.stderr
-        )
-        return 2
+    from loader_model.io.interrupts import (
+        Interrupted,
+        command_interrupts,
+        interrupt_message,
+        requested,
+    )
+
+    def interrupted(error: BaseException) -> int:
+        message, code = interrupt_message(error)  # one line: what stopped, what was kept
+        print(f"loader-model {args.command}: {message}", file=sys.stderr)
+        return code
+
+    with command_interrupts():  # Ctrl-C and SIGTERM raise loader_model.io.interrupts.Interrupted
+        try:
+            return int(args._run(args))
+        except KeyboardInterrupt as error:
+            return interrupted(error)
+        except BrokenPipeError:  # output piped into e.g. `head`, which closed early
+            sys.stderr.close()
+            return 0
+        except Exception as error:
+            number = requested()
+            if number is not None:  # raised because of an interrupt (e.g. in CasADi)
+                return interrupted(Interrupted(number))
+            if isinstance(error, ValueError):
+                print(f"loader-model {args.command}: error: {error}", file=sys.stderr)
+                return 2
+            if isinstance(error, OSError):  # backstop: the file checks should have said it first
+                where = f"{error.filename}: " if error.filename else ""
+                reason = error.strerror or error
+                print(f"loader-model {args.command}: error: {where}{reason}", file=sys.stderr)
+                return 2
+            raise
 
 
 if __name__ == "__main__":

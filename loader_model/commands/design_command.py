@@ -100,7 +100,17 @@ def _refine(args: argparse.Namespace, start, loads, params):
 
 
 def run(args: argparse.Namespace) -> int:
-    """Design, print gains / costs / poles / margins, write the figure atomically."""
+    """Design, print gains / costs / poles / margins, write the figure atomically; an interrupt
+    (Ctrl-C, SIGTERM) says which of the files were written."""
+    from loader_model.io.interrupts import files_note, keeping
+
+    written: list[str] = []
+    with keeping(lambda: files_note((args.output, args.plot), written)):
+        return _design(args, written)
+
+
+def _design(args: argparse.Namespace, written: list[str]) -> int:
+    """:func:`run`; appends each file it writes to ``written``."""
     import numpy as np
 
     from loader_model.io.export import check_output_path, write_atomically
@@ -199,6 +209,7 @@ def run(args: argparse.Namespace) -> int:
             args.output,
             header="Controller settings with designed skyhook gains (loader-model design).",
         )
+        written.append(args.output)
         print(f"wrote {args.output}")
     if args.plot is not None:
         from loader_model.control.comfort_figure import pitch_responses, plot_pitch_responses
@@ -217,5 +228,6 @@ def run(args: argparse.Namespace) -> int:
             (".png",),
             "plot file",
         )
+        written.append(args.plot)
         print(f"wrote {args.plot}")
     return 0

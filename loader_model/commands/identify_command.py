@@ -129,7 +129,7 @@ def _check_outputs(args: argparse.Namespace) -> None:
         raise ValueError(f"--level must be in (0, 1); got {args.level!r}")
 
 
-def _fit(args: argparse.Namespace) -> int:
+def _fit(args: argparse.Namespace, written: list[str]) -> int:
     from loader_model.identification import (
         identify_friction,
         identify_leakage,
@@ -179,8 +179,10 @@ def _fit(args: argparse.Namespace) -> int:
         updated = replace(loader, updates, source=rep.update_source(args.data, command))
     if args.plot is not None:
         plot(args.plot)
+        written.append(args.plot)
     if updated is not None:
         save(updated, args.update)
+        written.append(args.update)
     print(header)
     print(text)
     if args.plot is not None:
@@ -190,7 +192,7 @@ def _fit(args: argparse.Namespace) -> int:
     return 0
 
 
-def _synthesize(args: argparse.Namespace) -> int:
+def _synthesize(args: argparse.Namespace, written: list[str]) -> int:
     import dataclasses
     from pathlib import Path
 
@@ -240,6 +242,7 @@ def _synthesize(args: argparse.Namespace) -> int:
         f"{profile}",
     )
     write_measurement_csv(args.output, columns, comments)
+    written.append(args.output)
     samples = recording.record.time_s.size
     rate = sensors.sample_rate_hz
     print(f"wrote {args.output} ({samples} samples at {rate:g} Hz, seed {args.seed})")
@@ -247,7 +250,12 @@ def _synthesize(args: argparse.Namespace) -> int:
 
 
 def run(args: argparse.Namespace) -> int:
-    """Run ``identify friction|leakage|synthesize``; returns 0."""
-    if args.identify_action == "synthesize":
-        return _synthesize(args)
-    return _fit(args)
+    """Run ``identify friction|leakage|synthesize``; returns 0. An interrupt (Ctrl-C, SIGTERM)
+    says which of the files were written."""
+    from loader_model.io.interrupts import files_note, keeping
+
+    written: list[str] = []
+    synthesize = args.identify_action == "synthesize"
+    wanted = (args.output,) if synthesize else (args.plot, args.update)
+    with keeping(lambda: files_note(wanted, written)):
+        return _synthesize(args, written) if synthesize else _fit(args, written)

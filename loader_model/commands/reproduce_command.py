@@ -2,7 +2,8 @@
 the linear model at the static equilibrium (Eq. 38-40), printed; then the report folder
 (``--output``, default ``results/report``): the Table 6 experiment of section 5.3 beside the
 paper, Fig. 10, 13, 14, the Eq. 43 comparison, Tables 4 and 5 from a synthetic record, the gains,
-CSV files of every table and what differs from the paper. The folder is written atomically."""
+CSV files of every table and what differs from the paper. The folder is written atomically: an
+interrupt (Ctrl-C, SIGTERM) leaves the previous report, or none, and says which."""
 
 from __future__ import annotations
 
@@ -12,13 +13,14 @@ HELP = "reproduce the paper's results on the default loader and write the report
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Register ``--output``, ``--jobs``, ``--trials``, ``--seed``."""
+    """Register ``--output``, ``--jobs``, ``--trials``, ``--seed``, ``--no-progress``."""
     parser.add_argument(
         "--output", default="results/report", metavar="DIR", help="report folder (results/report)"
     )
     parser.add_argument("--jobs", type=int, default=2, metavar="N", help="worker processes (2)")
     parser.add_argument("--trials", type=int, default=4, metavar="N", help="trials per cell (4)")
     parser.add_argument("--seed", type=int, default=0, metavar="N", help="base seed (0)")
+    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
 def _print_model() -> None:
@@ -45,9 +47,11 @@ def _print_model() -> None:
 def run(args: argparse.Namespace) -> int:
     """Print Table 1 and the linear models, write the report folder. Returns 0."""
     import os
+    from pathlib import Path
 
     from loader_model.experiments.report import ReportOptions, markdown_table, write_report
     from loader_model.experiments.reproduction import build_reproduction
+    from loader_model.io.interrupts import keeping
 
     if args.jobs < 1 or args.jobs > max(os.cpu_count() or 1, 1) * 4:
         raise ValueError(f"--jobs must be in [1, {(os.cpu_count() or 1) * 4}]; got {args.jobs}")
@@ -55,14 +59,19 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"--trials must be in [2, 100] (a t-test needs 2); got {args.trials}")
     if args.seed < 0:
         raise ValueError(f"--seed must be >= 0; got {args.seed}")
-    _print_model()
-    options = ReportOptions(trials=args.trials, seed=args.seed, jobs=args.jobs)
+    options = ReportOptions(
+        trials=args.trials, seed=args.seed, jobs=args.jobs, progress=not args.no_progress
+    )
     summary: dict = {}
 
     def build(folder):
         summary.update(build_reproduction(folder, options))
 
-    path = write_report(args.output, build)
+    output = repr(args.output)
+    kept = f"the report in {output} is unchanged" if Path(args.output).is_dir() else ""
+    with keeping(lambda: kept or f"nothing written to {output}"):
+        _print_model()
+        path = write_report(args.output, build)
     print("=== Table 6: change of a_total against the baseline (model beside paper) ===")
     print(markdown_table(summary["tables"]["table6"]))
     print(

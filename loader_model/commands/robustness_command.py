@@ -7,14 +7,16 @@ from them), ``results.parquet`` and ``results.csv`` (one row per sample and cont
 ``gains.json`` (the K_fb each gain-based controller ran with) and ``report.md`` (change of a_total
 per controller, probability of worse comfort, worst cases, Spearman rank correlations, stability
 margin of the gains, failures). The study file is checked completely before anything runs or is
-written.
+written. An interrupt (Ctrl-C, SIGTERM) stops the workers at once and says how many samples are
+saved; rerunning the same command resumes.
 """
 
 from __future__ import annotations
 
 import argparse
 import os
-import sys
+from pathlib import Path
+from typing import Any
 
 __all__ = ["HELP", "add_arguments", "run"]
 
@@ -48,10 +50,20 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
+def _kept(study: Any, folder: Path) -> str:
+    """What an interrupted study kept: its saved samples and how to resume."""
+    from loader_model.robustness.table import read_parts
+
+    parts = repr(str(folder / "parts"))
+    try:
+        saved = f"{len(read_parts(folder, study))} of {study.samples} samples are saved in {parts}"
+    except Exception:  # an unreadable part: the resumed run will say which
+        saved = f"the finished batches are saved in {parts}"
+    return f"{saved}; run the same command again to resume"
+
+
 def run(args: argparse.Namespace) -> int:
     """Check the study and the folder, run or resume it, write and print the report."""
-    from pathlib import Path
-
     for name in ("OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS"):
         os.environ.setdefault(name, "1")  # before NumPy loads BLAS: see robustness.engine
     from loader_model.robustness.study import load_study
@@ -64,6 +76,7 @@ def run(args: argparse.Namespace) -> int:
     if not folder.parent.is_dir():
         raise ValueError(f"--output {str(folder)!r}: the folder {str(folder.parent)!r} is missing")
     from loader_model.io.export import write_atomically
+    from loader_model.io.interrupts import keeping
     from loader_model.robustness.engine import read_gains, run_study
     from loader_model.robustness.report import report_text
 
@@ -76,16 +89,10 @@ def run(args: argparse.Namespace) -> int:
         except (OSError, ValueError) as error:
             raise ValueError(f"--scheduler {args.scheduler!r}: cannot connect: {error}") from None
     try:
-        table = run_study(
-            study, folder, workers=workers, scheduler=client, progress=not args.no_progress
-        )
-    except KeyboardInterrupt:
-        print(
-            f"loader-model robustness: interrupted; the finished batches are saved in "
-            f"{str(folder / 'parts')!r}: run the same command again to resume",
-            file=sys.stderr,
-        )
-        return 130
+        with keeping(lambda: _kept(study, folder)):
+            table = run_study(
+                study, folder, workers=workers, scheduler=client, progress=not args.no_progress
+            )
     finally:
         if client is not None:
             client.close()

@@ -1,22 +1,25 @@
 """The reproduction report: a folder with ``report.md``, PNG figures and one CSV per table.
 
-:func:`write_report` builds everything in a temporary folder beside the destination and renames
+:func:`write_report` builds everything in a staging folder beside the destination and renames
 it into place only when complete, so a failure (or an interrupt) leaves either the previous report
-or none, never a half-written one.
+or none, never a half-written one. The staging folder is named after its process
+(:mod:`loader_model.io.staging`): the next run removes one that a killed run left behind, never one of
+a run still going. The report folder gets the permissions of the user's umask.
 """
 
 from __future__ import annotations
 
 import csv
+import secrets
 import shutil
-import tempfile
-import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
+from loader_model import staging
 from loader_model.experiments.table6 import LOAD_LABELS, SPEED_LABELS, Table6Cell
 from loader_model.experiments.tables import Rows
+from loader_model.io.interrupts import check_interrupt
 
 __all__ = [
     "FIDELITY_POINTS",
@@ -117,7 +120,8 @@ def _replace_folder(built: Path, destination: Path) -> None:
     """Move ``built`` to ``destination``; an existing report is swapped out, then removed."""
     old = None
     if destination.exists():
-        old = destination.with_name(f".{destination.name}.old-{time.time_ns()}")
+        token = secrets.token_hex(4)
+        old = destination.with_name(f"{staging.staging_prefix(destination.name, 'old')}{token}")
         destination.rename(old)
     try:
         built.rename(destination)
@@ -130,13 +134,14 @@ def _replace_folder(built: Path, destination: Path) -> None:
 
 
 def write_report(destination: str | Path, build: Callable[[Path], None]) -> Path:
-    """Run ``build(folder)`` in a temporary folder beside ``destination`` and rename it into place.
+    """Run ``build(folder)`` in a staging folder beside ``destination`` and rename it into place.
 
     Parameters
     ----------
     destination : str or pathlib.Path
         The report folder; its parent is created if missing. An existing folder is replaced
-        only once the new one is complete.
+        only once the new one is complete. The staging folders of ``destination`` that killed
+        runs left are removed first (:func:`loader_model.io.staging.remove_stale`).
     build : callable
         Writes the report's files into the folder it is given.
 
@@ -149,9 +154,11 @@ def write_report(destination: str | Path, build: Callable[[Path], None]) -> Path
     if destination.exists() and not destination.is_dir():
         raise ValueError(f"--output {str(destination)!r} exists and is not a folder")
     destination.parent.mkdir(parents=True, exist_ok=True)
-    temporary = Path(tempfile.mkdtemp(prefix=f".{destination.name}.tmp-", dir=destination.parent))
+    staging.remove_stale(destination.parent, destination.name)
+    temporary = staging.make_staging_folder(destination)
     try:
         build(temporary)
+        check_interrupt()  # an interrupt that code in build caught: not a report to keep
         _replace_folder(temporary, destination)
     except BaseException:
         shutil.rmtree(temporary, ignore_errors=True)

@@ -11,13 +11,13 @@ with or without additional damping"), the block with −1.3, 6.0, 2.5.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass
 
 import numpy as np
 
 from loader_model.experiments.statistics import Comparison, compare_with_baseline
 from loader_model.experiments.trials import TrialOutcome, TrialSpec, run_trial
+from loader_model.io.processes import worker_pool
 
 __all__ = [
     "LOAD_LABELS",
@@ -95,7 +95,8 @@ def run_trials(
 
     Trials are batched per (load, controller) so that each worker sets up each controller once;
     the results do not depend on ``jobs`` (each trial carries its own seed). Trials run with one
-    BLAS thread per process (:func:`_one_blas_thread`).
+    BLAS thread per process (:func:`_one_blas_thread`). The workers end with this process
+    (:func:`~loader_model.io.processes.worker_pool`): an interrupt or an error stops them at once.
     ``meanwhile`` runs in this process while the workers simulate (or after the trials, with
     ``jobs`` = 1), so that the calling process does useful work instead of waiting.
     """
@@ -125,11 +126,11 @@ def run_trials(
             if meanwhile is not None:
                 meanwhile()
         else:
-            with ProcessPoolExecutor(max_workers=jobs, initializer=_one_blas_thread) as pool:
+            with worker_pool(jobs, initializer=_one_blas_thread) as pool:
                 futures = [pool.submit(_run_chunk, batch) for batch in batches]
                 if meanwhile is not None:
                     meanwhile()
-                for future in as_completed(futures):
+                for future in pool.completed(futures):
                     collect(future.result())
     finally:
         bar.close()

@@ -5,18 +5,22 @@ cannot write (naming the allowed ones), a folder, a pipe or device, a missing fo
 location the user cannot write. :func:`write_atomically` writes into a temporary file beside the
 target and renames it over the target only when the write succeeded, so a failed command never
 leaves a partial file nor damages a good one. A new file gets the permissions the user's umask
-gives (``0o666 & ~umask``, as ``open()`` would); an overwritten file keeps its permissions.
+gives (``0o666 & ~umask``, as ``open()`` would); an overwritten file keeps its permissions. The
+temporary file is named after its process (:mod:`loader_model.io.staging`), so that the next write of
+the same target removes one a killed run left behind.
 """
 
 from __future__ import annotations
 
 import os
 import stat
-import tempfile
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 
 import numpy as np
+
+from loader_model import staging
+from loader_model.io.interrupts import check_interrupt
 
 __all__ = ["ARRAY_SUFFIXES", "check_output_path", "save_arrays", "write_atomically"]
 
@@ -65,17 +69,13 @@ def check_output_path(
     return target
 
 
-def _umask() -> int:
-    mask = os.umask(0o022)
-    os.umask(mask)
-    return mask
-
-
 def write_atomically(
     path: str | os.PathLike[str],
     write: Callable[[Path], None],
     suffixes: Sequence[str],
     what: str = "output file",
+    *,
+    remove_stale: bool = True,
 ) -> Path:
     """Call ``write(temporary_path)`` and rename the result to ``path`` only if it succeeded.
 
@@ -89,6 +89,10 @@ def write_atomically(
         Suffixes the caller can write (lower case, with the dot).
     what : str
         What the file is, for messages.
+    remove_stale : bool
+        First remove the temporary files of ``path`` that killed runs left
+        (:func:`loader_model.io.staging.remove_stale`; it lists the folder: a caller writing many
+        files into one folder removes them once instead).
 
     Raises
     ------
@@ -97,20 +101,21 @@ def write_atomically(
         the target is then untouched and no temporary file is left.
     """
     target = check_output_path(path, suffixes, what)
+    if remove_stale:
+        staging.remove_stale(target.parent, target.name)
     try:
         mode = stat.S_IMODE(os.stat(target).st_mode)
     except FileNotFoundError:
-        mode = 0o666 & ~_umask()
+        mode = 0o666 & ~staging.current_umask()
     try:
-        handle, temporary = tempfile.mkstemp(
-            dir=target.parent, prefix=f".{target.name}.", suffix=target.suffix
-        )
+        handle, temporary = staging.make_staging_file(target)
     except OSError as error:
         raise ValueError(f"{what} {str(target)!r} cannot be written: {error.strerror}") from None
     os.close(handle)
     try:
         write(Path(temporary))
         os.chmod(temporary, mode)
+        check_interrupt()  # after an interrupt (caught by code in between) nothing is written
         os.replace(temporary, target)
     except OSError as error:
         raise ValueError(

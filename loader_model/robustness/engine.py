@@ -11,7 +11,8 @@ study is refused. At the end the parts are combined, sorted by sample and contro
 ``results.parquet`` and ``results.csv``.
 
 Engines: ``workers = 1`` runs in this process; ``workers > 1`` a local process pool (spawned
-processes with one BLAS thread each; the controllers' periods compile once per process);
+processes with one BLAS thread each, ended with this process whichever way it ends,
+:func:`~loader_model.io.processes.worker_pool`; the controllers' periods compile once per process);
 ``scheduler``: a Dask ``distributed`` scheduler address (``tcp://host:8786``, e.g. from
 dask-jobqueue) or a ``distributed.Client`` (a ``LocalCluster`` in the tests). Dask retries the
 tasks of a worker that dies; the local pool stops with an error that says how to resume.
@@ -26,6 +27,7 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
+from loader_model.io.staging import remove_stale
 from loader_model.robustness.gains import Gains, resolve_gains
 from loader_model.robustness.sampling import SampleSpec, sample_specs
 from loader_model.robustness.study import Study
@@ -45,6 +47,7 @@ def _prepare(folder: Path, study: Study) -> None:
     if folder.exists() and not folder.is_dir():
         raise ValueError(f"results folder {str(folder)!r} exists and is not a folder")
     (folder / "parts").mkdir(parents=True, exist_ok=True)
+    remove_stale(folder / "parts")  # part files a killed run was writing (write_part leaves them)
     stamp = folder / "study.sha256"
     expected = fingerprint(study)
     if stamp.exists():
@@ -86,14 +89,15 @@ def _local(study: Study, gains: Gains, batches: list, workers: int, save: Any) -
             save(batch, run_batch(study, gains, batch))
         return
     import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor, as_completed
     from concurrent.futures.process import BrokenProcessPool
 
+    from loader_model.io.processes import worker_pool
+
     context = multiprocessing.get_context("spawn")
-    with _single_thread_environment(), ProcessPoolExecutor(workers, mp_context=context) as pool:
+    with _single_thread_environment(), worker_pool(workers, mp_context=context) as pool:
         futures = {pool.submit(run_batch, study, gains, batch): batch for batch in batches}
         try:
-            for future in as_completed(futures):
+            for future in pool.completed(futures):
                 save(futures[future], future.result())
         except BrokenProcessPool as error:
             raise ValueError(

@@ -54,7 +54,11 @@ def result_schema(study: Study) -> Any:
 
 
 def write_part(folder: Path, study: Study, first: int, rows: list[dict[str, Any]]) -> Path:
-    """Write one batch's rows atomically as ``parts/part-<first sample>.parquet``."""
+    """Write one batch's rows atomically as ``parts/part-<first sample>.parquet``.
+
+    The temporary files killed runs left in ``parts`` are not looked for here (that would list the
+    folder once per part): :func:`~loader_model.robustness.engine.run_study` removes them once.
+    """
     import pyarrow as pa
     import pyarrow.parquet as pq
 
@@ -63,7 +67,11 @@ def write_part(folder: Path, study: Study, first: int, rows: list[dict[str, Any]
     table = pa.Table.from_pylist(rows, schema=result_schema(study))
     path = folder / "parts" / f"part-{first:08d}.parquet"
     return write_atomically(
-        path, lambda temporary: pq.write_table(table, temporary), (".parquet",), "result part"
+        path,
+        lambda temporary: pq.write_table(table, temporary),
+        (".parquet",),
+        "result part",
+        remove_stale=False,
     )
 
 
