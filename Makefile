@@ -37,10 +37,11 @@ calibrate: setup
 	$(VENV)/bin/loader-model calibrate --output loader_model/data/default_loader.toml
 	$(MAKE) regenerate
 
-## lint: ruff check and format check over the whole tree
+## lint: ruff check and format check over the whole tree, and the runtime's layer contract
 lint: setup
 	$(PY) -m ruff check .
 	$(PY) -m ruff format --check .
+	$(VENV)/bin/lint-imports --no-cache
 
 ## test: lint, generated-code staleness, fast tests
 test: setup lint

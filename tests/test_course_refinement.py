@@ -12,7 +12,7 @@ from loader_model.control.comfort_design import (
     evaluate_gain,
     optimise_gain,
 )
-from loader_model.control.course_refinement import course_cost, refine_on_course
+from loader_model.experiments.course_refinement import course_cost, refine_on_course
 
 
 def test_an_unstable_start_is_refused_before_any_drive() -> None:

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import pytest
 
-from loader_model import staging
+from loader_model.io import staging
 from tests.process_scan import command_line, group_members, ignores_sigint, wait_until
 
 pytestmark = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="reads /proc")

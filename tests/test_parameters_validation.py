@@ -18,9 +18,9 @@ from loader_model.parameters.sets import (
     default_loader,
     load_bucket_load,
     load_loader,
-    model_parameter_values,
     replace,
 )
+from loader_model.vehicle.statics import resolve_machine
 
 DATA = resources.files("loader_model").joinpath("data")
 LOADER = tomllib.loads(DATA.joinpath("default_loader.toml").read_text(encoding="utf-8"))
@@ -296,4 +296,4 @@ def test_combined_centre_of_gravity_must_not_coincide_with_a_point() -> None:
         ValueError,
         match=r"geometry\.E = .* and combined G of boom\.cog and load\.cog = .* coincide",
     ):
-        model_parameter_values(loader, on_e)
+        resolve_machine(loader, on_e)

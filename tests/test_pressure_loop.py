@@ -7,13 +7,13 @@ import numpy as np
 import pytest
 
 from loader_model.cli import main
-from loader_model.plant.linear import linearise_plant
-from loader_model.plant.plant_parameters import plant_parameter_vector
-from loader_model.plant.pressure_loop import (
+from loader_model.control.pressure_loop import (
     EQUATION_43,
     compare_with_equation_43,
     pressure_loop,
 )
+from loader_model.plant.linear import linearise_plant
+from loader_model.plant.plant_parameters import plant_parameter_vector
 
 
 @pytest.fixture(scope="module")

@@ -11,8 +11,8 @@ from pathlib import Path
 
 import pytest
 
-from loader_model import staging
 from loader_model.experiments.report import write_report
+from loader_model.io import staging
 from loader_model.io.export import write_atomically
 
 HOST = staging.staging_prefix("x").split("-")[1]

@@ -68,7 +68,7 @@ def _row(label: str, gain, evaluations) -> str:
 
 def _refine(args: argparse.Namespace, start, loads, params):
     """Refine ``start`` on the nonlinear paper course and print the course a_total before/after."""
-    from loader_model.control.course_refinement import course_cost, refine_on_course
+    from loader_model.experiments.course_refinement import course_cost, refine_on_course
 
     print(f"Refining on the nonlinear paper course at {args.speed:g} km/h ({', '.join(loads)}):")
     table3 = course_cost((2.75, 5.10, -4.0, -0.22), loads, args.speed, params)

@@ -30,8 +30,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Print the hydraulics report and write the figure atomically."""
+    from loader_model.control.hydraulics_report import hydraulics_report, plot_pressure_loop
     from loader_model.io.export import check_output_path, write_atomically
-    from loader_model.plant.plant_report import hydraulics_report, plot_pressure_loop
 
     check_output_path(args.plot, (".png",), "plot file")  # before any work
     if not args.highpass > 0:

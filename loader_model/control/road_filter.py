@@ -43,7 +43,7 @@ from typing import Any
 
 import numpy as np
 
-from loader_model.simulation.iso8608 import (
+from loader_model.parameters.road_classes import (
     CLASS_PSD_M3,
     ISO8608_BAND_CYCLES_M,
     REFERENCE_SPATIAL_FREQUENCY_CYCLES_M,

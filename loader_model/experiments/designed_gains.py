@@ -9,7 +9,7 @@ paper's low speed), exactly as ``loader-model design`` does:
 - comfort-optimised: Σ a_total² over both bucket loads, stability margin 0.1 rad/s
   (:func:`~loader_model.control.comfort_design.optimise_gain`);
 - refined on the course: the comfort-optimised gains refined on the nonlinear paper course at
-  9 km/h, both loads (:mod:`~loader_model.control.course_refinement`), shipped as
+  9 km/h, both loads (:mod:`~loader_model.experiments.course_refinement`), shipped as
   ``data/controller_refined.toml`` (``make gains`` writes it; it takes minutes, too long for
   the report, and a slow test checks that it still helps on the current model).
 

@@ -16,9 +16,9 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
-from loader_model import staging
 from loader_model.experiments.table6 import LOAD_LABELS, SPEED_LABELS, Table6Cell
 from loader_model.experiments.tables import Rows
+from loader_model.io import staging
 from loader_model.io.interrupts import check_interrupt
 
 __all__ = [

@@ -55,8 +55,8 @@ def _complex(values: np.ndarray) -> str:
 
 def pressure_loop_rows(figure: Path | None = None) -> Rows:
     """The detailed pressure loop (empty bucket) beside Eq. 43; optionally its Bode figure."""
+    from loader_model.control.hydraulics_report import hydraulics_report, plot_pressure_loop
     from loader_model.parameters.sets import bucket_load, default_loader
-    from loader_model.plant.plant_report import hydraulics_report, plot_pressure_loop
 
     report = hydraulics_report(default_loader(), bucket_load("empty"))
     rows: Rows = [["loop", "DC gain", "poles |s| < 500 [rad/s]", "zeros |s| < 500 [rad/s]"]]

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
-from loader_model import staging
+from loader_model.io import staging
 from loader_model.io.interrupts import check_interrupt
 
 __all__ = ["ARRAY_SUFFIXES", "check_output_path", "save_arrays", "write_atomically"]

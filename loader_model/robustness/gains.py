@@ -42,7 +42,7 @@ def robust_gain(study: Study) -> tuple[tuple[float, ...], list[SampleSpec]]:
     be built (parameter checks) are skipped.
     """
     from loader_model.control.comfort_design import comfort_plants, optimise_gain
-    from loader_model.robustness.runner import sample_plant_vector
+    from loader_model.robustness.sampling import sample_plant_vector
 
     specs = sample_specs(study, study.robust_plants, stream=1)
     plants = []

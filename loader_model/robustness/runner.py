@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from loader_model.robustness.gains import Gains, max_pole_real
-from loader_model.robustness.sampling import SampleSpec
+from loader_model.robustness.sampling import SampleSpec, sample_plant_vector
 from loader_model.robustness.sensors import (
     corrupted_fixed_point,
     sensor_controller,
@@ -28,7 +28,7 @@ from loader_model.robustness.sensors import (
 from loader_model.robustness.study import Study
 from loader_model.simulation.simulator import course_input, simulate
 
-__all__ = ["AXES", "run_batch", "run_sample", "sample_plant_vector"]
+__all__ = ["AXES", "run_batch", "run_sample"]
 
 #: ISO 2631-1 axes of the seat evaluation (x = fore-aft, z = vertical, pitch).
 AXES: tuple[str, ...] = ("x", "z", "pitch")
@@ -44,28 +44,6 @@ def _hold_controller() -> Any:
     if "hold" not in _CONTROLLERS:
         _CONTROLLERS["hold"] = hold_command_controller()
     return _CONTROLLERS["hold"]
-
-
-def sample_plant_vector(spec: SampleSpec) -> tuple[np.ndarray, Any]:
-    """Plant parameter vector (accumulator shut) and bucket load of a sample.
-
-    Raises
-    ------
-    ValueError
-        From the parameter files' range and consistency checks.
-    """
-    from loader_model import parameters
-    from loader_model.plant.plant_parameters import plant_parameter_vector
-
-    plant = [(p, v) for p, v in spec.values if not p.startswith("sensors.")]
-    loader_updates = {p: v for p, v in plant if not p.startswith("load.")}
-    load_updates = {p.removeprefix("load."): v for p, v in plant if p.startswith("load.")}
-    loader, load = parameters.default_loader(), parameters.bucket_load(spec.load)
-    if loader_updates:
-        loader = parameters.replace(loader, loader_updates)
-    if load_updates:
-        load = parameters.replace(load, load_updates)
-    return plant_parameter_vector(loader, load, check=True), load
 
 
 def _course(study: Study, spec: SampleSpec) -> Any:

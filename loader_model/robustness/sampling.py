@@ -13,12 +13,13 @@ from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from loader_model.robustness.study import Study
 
-__all__ = ["SampleSpec", "design_matrix", "sample_specs"]
+__all__ = ["SampleSpec", "design_matrix", "sample_plant_vector", "sample_specs"]
 
 
 @dataclass(frozen=True)
@@ -113,3 +114,25 @@ def sample_specs(study: Study, count: int | None = None, stream: int = 0) -> lis
             )
         )
     return specs
+
+
+def sample_plant_vector(spec: SampleSpec) -> tuple[np.ndarray, Any]:
+    """Plant parameter vector (accumulator shut) and bucket load of a sample.
+
+    Raises
+    ------
+    ValueError
+        From the parameter files' range and consistency checks.
+    """
+    from loader_model import parameters
+    from loader_model.plant.plant_parameters import plant_parameter_vector
+
+    plant = [(p, v) for p, v in spec.values if not p.startswith("sensors.")]
+    loader_updates = {p: v for p, v in plant if not p.startswith("load.")}
+    load_updates = {p.removeprefix("load."): v for p, v in plant if p.startswith("load.")}
+    loader, load = parameters.default_loader(), parameters.bucket_load(spec.load)
+    if loader_updates:
+        loader = parameters.replace(loader, loader_updates)
+    if load_updates:
+        load = parameters.replace(load, load_updates)
+    return plant_parameter_vector(loader, load, check=True), load

@@ -24,6 +24,12 @@ import math
 
 import numpy as np
 
+from loader_model.parameters.road_classes import (
+    CLASS_PSD_M3,
+    ISO8608_BAND_CYCLES_M,
+    REFERENCE_SPATIAL_FREQUENCY_CYCLES_M,
+    WAVINESS,
+)
 from loader_model.simulation._checks import as_number, as_seed
 from loader_model.simulation.roads import RoadProfile
 
@@ -38,15 +44,6 @@ __all__ = [
     "iso8608_profile",
     "profile_variance",
 ]
-
-#: n_0 of ISO 8608 in cycles/m.
-REFERENCE_SPATIAL_FREQUENCY_CYCLES_M = 0.1
-#: Exponent w of the fitted PSD (ISO 8608 classification uses w = 2).
-WAVINESS = 2.0
-#: Spatial frequency band of ISO 8608 in cycles/m.
-ISO8608_BAND_CYCLES_M = (0.011, 2.83)
-#: Geometric mean of G_d(n_0) per class in m³ (ISO 8608, table of road classes).
-CLASS_PSD_M3 = {letter: 16e-6 * 4.0**index for index, letter in enumerate("ABCDEFGH")}
 
 
 def _check_class(road_class: object) -> str:

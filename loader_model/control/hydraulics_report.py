@@ -10,15 +10,15 @@ from typing import Any
 
 import numpy as np
 
-from loader_model.plant.linear import linearise_plant, undamped_matrices_from_plant
-from loader_model.plant.plant import OUTPUT_NAMES, plant_function
-from loader_model.plant.plant_parameters import PlantOptions, plant_parameter_vector
-from loader_model.plant.pressure_loop import (
+from loader_model.control.pressure_loop import (
     EQUATION_43,
     PressureLoopComparison,
     compare_with_equation_43,
     pressure_loop,
 )
+from loader_model.plant.linear import linearise_plant, undamped_matrices_from_plant
+from loader_model.plant.plant import OUTPUT_NAMES, plant_function
+from loader_model.plant.plant_parameters import PlantOptions, plant_parameter_vector
 
 __all__ = ["HydraulicsReport", "hydraulics_report", "plot_pressure_loop"]
 
