@@ -127,14 +127,9 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
         raise ValueError(f"--speed {args.speed:g} with --method refine: allowed: 9 or 18 km/h")
     if args.evaluations < 1:
         raise ValueError(f"--evaluations {args.evaluations}: allowed: an integer >= 1")
-    from loader_model.control.comfort_design import (
-        TABLE3_GAIN,
-        comfort_plants,
-        evaluate_gain,
-        lqr_gain,
-        optimise_gain,
-    )
+    from loader_model.control.comfort_design import TABLE3_GAIN, comfort_plants, evaluate_gain
     from loader_model.control.comfort_plant import comfort_case
+    from loader_model.control.gain_design import design_gains
 
     course_note = ""
     loads = ("empty", "full") if args.load == "both" else (args.load,)
@@ -147,14 +142,10 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
     design = [p for p in every if p.name in loads]
     table3 = TABLE3_GAIN
     flipped = TABLE3_GAIN * np.array([[1.0, 1.0, 1.0, -1.0]])
-    lqr = {p.name: lqr_gain(p).gain for p in design}
+    lqr = design_gains(design, "lqr").gains
     if args.method in ("optimise", "refine"):
-        result = optimise_gain(design, margin=args.margin, solver=args.solver)
-        designed, label = result["gain"], "optimised (ISO 2631)"
-        note = (
-            f"{args.solver}: {result['iterations']} iterations, {result['time_s']:.2f} s, "
-            f"{result['status']}"
-        )
+        optimised = design_gains(design, "optimise", margin=args.margin, solver=args.solver)
+        designed, label, note = optimised.gain, "optimised (ISO 2631)", optimised.summary
     else:
         designed = lqr[loads[0]] if len(loads) == 1 else None
         label, note = "output-feedback LQR", "Q = C_zᵀC_z, R = 1e-2, X0 = B_w B_wᵀ"

@@ -1,6 +1,7 @@
 """Controllers (paper section 3): settings, sensors, the 1 kHz controllers and their linear
 equivalents, output-feedback LQR and the H2 / ISO 2631 gain optimisation (certified BFGS or
-IPOPT through CasADi, :func:`~loader_model.control.comfort_design.optimise_gain`).
+IPOPT through CasADi), behind one entry point,
+:func:`~loader_model.control.gain_design.design_gains`.
 
 The algorithms are generic in the plant: they take numpy matrices or python-control systems.
 """
@@ -31,6 +32,7 @@ __all__ = [
     "SETTINGS_NAMES",
     "ControllerSettings",
     "DesignPlant",
+    "GainDesign",
     "LinearController",
     "NoStabilisingGainError",
     "OutputFeedbackResult",
@@ -39,6 +41,7 @@ __all__ = [
     "controller_function",
     "controller_state_names",
     "default_settings",
+    "design_gains",
     "h2_cost_function",
     "h2_costs",
     "linear_controller",
@@ -52,6 +55,8 @@ __all__ = [
 #: Names of the design modules, loaded on first access (PEP 562): they import scipy.linalg and
 #: scipy.optimize (about 0.4 s), which the simulator, importing this package, does not need.
 _LAZY_ATTRIBUTES = {
+    "GainDesign": "gain_design",
+    "design_gains": "gain_design",
     "h2_cost_function": "h2_cost",
     "h2_costs": "h2_cost",
     "NoStabilisingGainError": "output_feedback",

@@ -77,21 +77,16 @@ def refined_settings():
 def designed_gains() -> dict[str, DesignedGain]:
     """Table 3, LQR (empty bucket), comfort-optimised and course-refined gains with their linear
     evaluations, keyed ``"skyhook"`` and :data:`~loader_model.experiments.trials.DESIGNED_CONTROLLERS`."""
-    from loader_model.control.comfort_design import (
-        TABLE3_GAIN,
-        comfort_plants,
-        evaluate_gain,
-        lqr_gain,
-        optimise_gain,
-    )
+    from loader_model.control.comfort_design import TABLE3_GAIN, comfort_plants, evaluate_gain
+    from loader_model.control.gain_design import design_gains
 
     plants = comfort_plants(("empty", "full"), DESIGN_ROAD_CLASS, DESIGN_SPEED_KMH)
     road = f"ISO 8608 class {DESIGN_ROAD_CLASS} at {DESIGN_SPEED_KMH:g} km/h"
-    optimised = optimise_gain(plants)
+    optimised = design_gains(plants, "optimise").details
     candidates = {
         "skyhook": (TABLE3_GAIN, "Table 3 (paper, tuned online)"),
         "skyhook-lqr": (
-            lqr_gain(plants[0]).gain,
+            design_gains(plants[:1], "lqr").gain,
             f"output-feedback LQR, empty bucket, Q = C_zᵀC_z, R = 1e-2, {road}",
         ),
         "skyhook-optimised": (

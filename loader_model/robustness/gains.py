@@ -4,9 +4,9 @@ Gains are resolved once, in the process that plans the study, and travel to the 
 
 - ``table3``: K_fb of Table 3;
 - ``lqr``: output-feedback LQR (Eq. 41, 42) on the nominal design plant of each bucket load
-  (:func:`~loader_model.control.comfort_design.lqr_gain`);
+  (:func:`~loader_model.control.gain_design.design_gains`, ``"lqr"``);
 - ``optimised``: the ISO 2631 optimisation over the nominal plants of the study's loads
-  (:func:`~loader_model.control.comfort_design.optimise_gain`);
+  (:func:`~loader_model.control.gain_design.design_gains`, ``"optimise"``);
 - ``robust``: the same optimisation over ``robust_plants`` plants drawn from the study's
   distributions with an independent design (stream 1), so the study's samples are a fresh sample.
 
@@ -41,7 +41,8 @@ def robust_gain(study: Study) -> tuple[tuple[float, ...], list[SampleSpec]]:
     Returns the gain and the specs of the plants it was designed on. Samples whose plant cannot
     be built (parameter checks) are skipped.
     """
-    from loader_model.control.comfort_design import comfort_plants, optimise_gain
+    from loader_model.control.comfort_design import comfort_plants
+    from loader_model.control.gain_design import design_gains
     from loader_model.robustness.sampling import sample_plant_vector
 
     specs = sample_specs(study, study.robust_plants, stream=1)
@@ -56,7 +57,7 @@ def robust_gain(study: Study) -> tuple[tuple[float, ...], list[SampleSpec]]:
         plants.append(plant)
     if not plants:
         raise ValueError("robust gains: no sampled plant passed the parameter checks")
-    return _row(optimise_gain(plants)["gain"]), specs
+    return _row(design_gains(plants, "optimise").gain), specs
 
 
 def resolve_gains(study: Study) -> Gains:
@@ -77,12 +78,8 @@ def resolve_gains(study: Study) -> Gains:
     ValueError
         If a design fails (e.g. no sampled plant for the robust gains passes the checks).
     """
-    from loader_model.control.comfort_design import (
-        TABLE3_GAIN,
-        comfort_plants,
-        lqr_gain,
-        optimise_gain,
-    )
+    from loader_model.control.comfort_design import TABLE3_GAIN, comfort_plants
+    from loader_model.control.gain_design import design_gains
 
     table3 = _row(TABLE3_GAIN)
     gains: Gains = {}
@@ -92,13 +89,14 @@ def resolve_gains(study: Study) -> Gains:
     nominal = ()
     if methods & {"lqr", "optimised"}:
         nominal = comfort_plants(study.loads, study.road_class, study.speeds_kmh[0])
-    optimised = _row(optimise_gain(nominal)["gain"]) if "optimised" in methods else None
+    optimised = _row(design_gains(nominal, "optimise").gain) if "optimised" in methods else None
     robust = robust_gain(study)[0] if "robust" in methods else None
     for name, spec in study.gains:
         if spec == "table3":
             gains[name] = dict.fromkeys(study.loads, table3)
         elif spec == "lqr":
-            gains[name] = {p.name: _row(lqr_gain(p).gain) for p in nominal}
+            lqr = design_gains(nominal, "lqr").gains
+            gains[name] = {load: _row(gain) for load, gain in lqr.items()}
         elif spec == "optimised":
             gains[name] = dict.fromkeys(study.loads, optimised)
         elif spec == "robust":
