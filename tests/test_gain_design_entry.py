@@ -27,7 +27,13 @@ def test_lqr_is_the_output_feedback_lqr_of_each_plant(plants) -> None:
             plant.B_w @ plant.B_w.T,
         )
         assert direct.converged
-        np.testing.assert_allclose(design.gains[plant.name], direct.gain, rtol=1e-6)
+        # Two starts (Table 3 with k_φ flipped, and zero) reach the same optimum: the costs
+        # agreed to 2.3e-11 and the gains to 2.2e-8 (Haswell) and 1.9e-5 (SkylakeX kernel),
+        # relative: on these 38-state plants J is flat to round-off well before the gain is.
+        result = design.details[plant.name]
+        np.testing.assert_allclose(result.cost, direct.cost, rtol=1e-9)
+        gain = design.gains[plant.name]
+        assert np.abs(gain - direct.gain).max() <= 1e-4 * np.abs(direct.gain).max()
     with pytest.raises(ValueError, match="has one gain per plant"):
         _ = design.gain
 
