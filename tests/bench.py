@@ -167,11 +167,11 @@ def _control_design() -> None:
     Nelder-Mead searches of the same costs from the same starts."""
     from scipy.linalg import solve_continuous_lyapunov
 
-    from loader_model.control import DesignPlant, h2_costs, output_feedback_lqr
+    from loader_model.control import h2_costs, output_feedback_lqr
     from loader_model.control.comfort_design import optimise_gain
-    from tests.control_plant import MEASURED, PERFORMANCE, TABLE3_GAIN, loader_design_plant
+    from tests.control_plant import MEASURED, TABLE3_GAIN, loader_design_plant, loader_h2_plants
 
-    measured, performance = list(MEASURED), list(PERFORMANCE)
+    measured = list(MEASURED)
     systems = {load: loader_design_plant(load) for load in ("empty", "full")}
     sys = systems["empty"]
     a, b_u, b_w = np.asarray(sys.A), np.asarray(sys.B)[:, :1], np.asarray(sys.B)[:, 1:]
@@ -199,17 +199,7 @@ def _control_design() -> None:
         f"{'':<42}J = {lqr.cost:.10g} in {lqr.iterations} iterations (Nelder-Mead {baseline_cost:.10g})"
     )
 
-    plants = [
-        DesignPlant.from_statespace(
-            systems[load],
-            control=["u"],
-            noise=["nu_Fy", "nu_M"],
-            measured=measured,
-            performance=measured + performance,
-            name=load,
-        )
-        for load in ("empty", "full")
-    ]
+    plants = loader_h2_plants(systems)
 
     def h2_cost(k: np.ndarray) -> float:
         check = h2_costs(plants, k, r)

@@ -21,6 +21,7 @@ from __future__ import annotations
 import control
 import numpy as np
 
+from loader_model.control.design_plant import DesignPlant
 from loader_model.vehicle.dynamics import LoaderDynamics
 
 G_M_S2 = 9.81
@@ -79,3 +80,22 @@ def loader_design_plant(load: str = "empty") -> control.StateSpace:
         outputs=[*MEASURED, *PERFORMANCE],
         name=f"loader_{load}",
     )
+
+
+def loader_h2_plants(systems: dict[str, control.StateSpace] | None = None) -> list[DesignPlant]:
+    """The two loads' design plants of the H2 tests: u, noise (nu_Fy, nu_M), measured y, and
+    z = (y, seat and pitch accelerations), whose single-plant H2 optimum is the output-feedback
+    LQR with Q = C_zᵀ C_z, R = 1, X0 = B_w B_wᵀ (J_H2 = 2 J_LQR)."""
+    systems = systems or {load: loader_design_plant(load) for load in ("empty", "full")}
+    measured = list(MEASURED)
+    return [
+        DesignPlant.from_statespace(
+            systems[load],
+            control=["u"],
+            noise=["nu_Fy", "nu_M"],
+            measured=measured,
+            performance=measured + list(PERFORMANCE),
+            name=load,
+        )
+        for load in ("empty", "full")
+    ]

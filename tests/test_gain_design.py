@@ -19,7 +19,13 @@ from loader_model.control import (
     output_feedback_lqr,
 )
 from loader_model.control.comfort_design import optimise_gain
-from tests.control_plant import MEASURED, PERFORMANCE, TABLE3_GAIN, loader_design_plant
+from tests.control_plant import (
+    MEASURED,
+    PERFORMANCE,
+    TABLE3_GAIN,
+    loader_design_plant,
+    loader_h2_plants,
+)
 
 Y, Z = list(MEASURED), list(PERFORMANCE)
 EFFORT = np.eye(1)
@@ -32,19 +38,7 @@ def systems() -> dict[str, control.StateSpace]:
 
 @pytest.fixture(scope="module")
 def plants(systems: dict[str, control.StateSpace]) -> list[DesignPlant]:
-    # z = (y, seat accelerations): the H2 problem whose single-plant optimum is the
-    # output-feedback LQR with Q = C_zᵀ C_z, R = 1, X0 = B_w B_wᵀ (J_H2 = 2 J_LQR).
-    return [
-        DesignPlant.from_statespace(
-            systems[load],
-            control=["u"],
-            noise=["nu_Fy", "nu_M"],
-            measured=Y,
-            performance=Y + Z,
-            name=load,
-        )
-        for load in ("empty", "full")
-    ]
+    return loader_h2_plants(systems)
 
 
 @pytest.fixture(scope="module")

@@ -7,10 +7,10 @@ import pytest
 
 from loader_model.control import DesignPlant, output_feedback_lqr
 from loader_model.control.comfort_design import optimise_gain
-from tests.control_plant import MEASURED, PERFORMANCE, TABLE3_GAIN, loader_design_plant
+from tests.control_plant import MEASURED, TABLE3_GAIN, loader_design_plant, loader_h2_plants
 from tests.test_gain_design import GRAMIAN_OPTIMUM
 
-Y, Z = list(MEASURED), list(PERFORMANCE)
+Y = list(MEASURED)
 
 
 def _margin(plants: list[DesignPlant], gain: np.ndarray) -> float:
@@ -20,17 +20,7 @@ def _margin(plants: list[DesignPlant], gain: np.ndarray) -> float:
 @pytest.mark.slow
 def test_start_sweep() -> None:
     systems = {load: loader_design_plant(load) for load in ("empty", "full")}
-    plants = [
-        DesignPlant.from_statespace(
-            systems[load],
-            control=["u"],
-            noise=["nu_Fy", "nu_M"],
-            measured=Y,
-            performance=Y + Z,
-            name=load,
-        )
-        for load in ("empty", "full")
-    ]
+    plants = loader_h2_plants(systems)
     c, b_w = np.asarray(systems["empty"].C), np.asarray(systems["empty"].B)[:, 1:]
     lqr = output_feedback_lqr(
         systems["empty"], c.T @ c, np.eye(1), b_w @ b_w.T, inputs=["u"], outputs=Y
