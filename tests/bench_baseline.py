@@ -553,6 +553,6 @@ def baseline_simulation(
 
 def seat_agreement(trace: Array, reference: Array) -> Array:
     """Per column ‖s − s_ref‖_rms / ‖s_ref − s_ref(0)‖_rms: the seat trace norm of
-    ``tests/test_simulator.py`` (rows: the controller's instants)."""
+    ``tests/simulation/test_simulator.py`` (rows: the controller's instants)."""
     error = np.sqrt(np.mean((trace - reference) ** 2, axis=0))
     return error / np.sqrt(np.mean((reference - reference[0]) ** 2, axis=0))

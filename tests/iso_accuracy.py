@@ -1,7 +1,7 @@
 """Accuracy of the discrete ISO 2631-1 weightings against exact causal Annex A filtering.
 
 The reference is independent of ``loader_model.iso2631``: the Annex A.2 factors are written out
-here as second-order sections (from ``tests/test_iso2631_annex_a.py``'s parameter table) and
+here as second-order sections (from ``tests/iso2631/test_iso2631_annex_a.py``'s parameter table) and
 simulated in continuous time by :func:`scipy.signal.lsim` on a 10 kHz grid of the analytic
 signal (exact for piecewise-linear input, which the fine grid makes the signal). Sines use the
 steady-state gain ``|W(j 2π f)|`` directly. Run ``python -m tests.iso_accuracy`` for the table.
@@ -15,7 +15,7 @@ import numpy as np
 import scipy.signal
 
 from loader_model.iso2631 import maximum_transient_vibration_value, weight_acceleration
-from tests.test_iso2631_annex_a import ANNEX_A_PARAMETERS, Q_BAND, annex_a_response
+from tests.iso2631.test_iso2631_annex_a import ANNEX_A_PARAMETERS, Q_BAND, annex_a_response
 
 REFERENCE_RATE_HZ = 10_000.0
 SINE_HZ = 10.0 ** (np.arange(-3, 16) / 10.0)  # one-third octaves 0.5 .. 31.5 Hz

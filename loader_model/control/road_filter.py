@@ -16,7 +16,7 @@ with ν white noise of unit intensity (E ν(t)ν(t') = δ(t − t'), one-sided P
 .. math:: G_{d,filter}(n) = \frac{2 q^2 v}{(2\pi v n)^2 + a^2} = G_d(n_0)\,\frac{n_0^2}{n^2 + n_1^2},
 
 the ISO closed form times n²/(n² + n_1²): 1 % low at n = 10 n_1 = 0.11 cycles/m, 0.05 % at
-0.5 cycles/m (checked in ``tests/test_comfort_design.py``).
+0.5 cycles/m (checked in ``tests/control/test_comfort_design.py``).
 
 Rear axle. B runs a wheelbase L behind A on the same track, :math:`h_B(t) = h_A(t - L/v)`,
 approximated by the Padé approximant of order N (numerator and denominator degree N, an all-pass:

@@ -9,7 +9,7 @@ The controller reads five signals, all plant outputs (:data:`loader_model.plant.
 
 Accelerometers read specific force (acceleration minus gravity) in the chassis frame, so a loader
 at rest pitched nose-up by θ1 reads f_Hx = g sin θ1 and f_Hy = f_Ny = g cos θ1 (checked on the
-plant in ``tests/test_controllers_sensors.py``).
+plant in ``tests/control/test_controllers_sensors.py``).
 The pitch acceleration follows from the two vertical readings (rigid chassis):
 
 .. math::

@@ -3,7 +3,7 @@
 :mod:`scipy.signal` takes about 0.6 s to import (it loads scipy.stats, scipy.interpolate and
 scipy.optimize), several times the rest of ``loader-model simulate``. The weightings need only
 the frequency response and the filtering of a cascade of second-order sections, of a short FIR
-and a polyphase interpolator, written here with NumPy; ``tests/test_iso2631_digital.py``
+and a polyphase interpolator, written here with NumPy; ``tests/iso2631/test_iso2631_digital.py``
 compares each with its :mod:`scipy.signal` counterpart (``sosfreqz``, ``freqz``, ``sosfilt``,
 ``lfilter``, ``resample_poly``).
 
@@ -21,7 +21,7 @@ Rounding: the signal is filtered less its first sample (see :func:`sos_filter`),
 as gravity adds none. Against an exact (long-double) recursion of the same sections, with a 1 g
 offset from its steady state, the output is off by 1.1e-12 of its peak for Wk at 1 kHz and
 1.8e-10 for Wj at 10 kHz, where :func:`scipy.signal.sosfilt` is off by 2.1e-10 and 6.2e-8
-(``tests/test_iso2631_digital.py``; rounding grows as the poles approach z = 1 with the rate).
+(``tests/iso2631/test_iso2631_digital.py``; rounding grows as the poles approach z = 1 with the rate).
 """
 
 from __future__ import annotations

@@ -8,7 +8,7 @@ The allowed range of a field is the range of *plausible* values for the machines
 for (compact and wheel loaders, backhoes and tractors, about 0.5 t to 50 t), with the reason
 beside it; a hard physical limit (a mass is positive) is kept as an open bound. A value outside
 is refused naming the field, the value, the range and the reason. A new field therefore needs
-only its unit and a :class:`Range` with a reason (``tests/test_parameter_ranges.py`` checks that
+only its unit and a :class:`Range` with a reason (``tests/parameters/test_parameter_ranges.py`` checks that
 every field has finite bounds and a reason).
 """
 

@@ -8,7 +8,7 @@ balance
           + \frac{\partial E}{\partial w_{road}} \dot w_{road,true}
           = P_{road} + P_{pump} + P_{charge} + P_{dist} - \sum D
 
-holds at every state, to round-off (``tests/test_plant_energy.py``). Stored energy E:
+holds at every state, to round-off (``tests/plant/test_plant_energy.py``). Stored energy E:
 
 - kinetic ½ ṗᵀ M ṗ (Eq. 25), gravity, tyre springs with the contact law's clamp (Eq. 1-4,
   derive/energy.py), end stops (:func:`~loader_model.plant.components.end_stop_energy`);

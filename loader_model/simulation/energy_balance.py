@@ -13,7 +13,7 @@ with the power flows of :mod:`loader_model.plant.energy`. Two ways to get the in
   work against the road's motion is ½ (F_e,k + F_e,k+1) · (w_{k+1} − w_k) per period.
 
 The residual (inputs − losses − ΔE) measures the integration, not the model: the model's
-balance is an identity (``tests/test_plant_energy.py``).
+balance is an identity (``tests/plant/test_plant_energy.py``).
 """
 
 from __future__ import annotations

@@ -11,7 +11,7 @@ which carries the time series up to it; then it checks that everything is finite
 :class:`SimulationError` naming the time and the state if not: no NaN leaves the simulator.
 Events (cavitation, tyre lift-off, end stops, pump saturation) are recorded in the result
 (:mod:`~loader_model.simulation.events`). Accuracy against a CVODES reference at rtol 1e-10:
-``tests/test_simulator.py``.
+``tests/simulation/test_simulator.py``.
 """
 
 from __future__ import annotations

@@ -40,7 +40,7 @@ def static_equilibrium(loader: LoaderParameters, load: BucketLoad) -> dict[str, 
     The forces come from the generated ``complete_parameters`` (the model's own statics), the
     pressure from :func:`loader_model.vehicle.cylinder.static_piston_pressure`, which the plant's
     equilibrium (:mod:`loader_model.plant.equilibrium`) uses too, so validation and simulation
-    agree by construction; ``tests/test_parameter_ranges.py`` checks it against hand statics.
+    agree by construction; ``tests/parameters/test_parameter_ranges.py`` checks it against hand statics.
 
     Returns
     -------

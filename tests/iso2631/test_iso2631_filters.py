@@ -19,7 +19,7 @@ from loader_model.iso2631 import (
     weight_acceleration,
     weighting_num_den,
 )
-from tests.test_iso2631_annex_a import annex_a_response, third_octave_hz
+from tests.iso2631.test_iso2631_annex_a import annex_a_response, third_octave_hz
 
 #: ISO 8041 tolerances used by the brief: ±1 dB magnitude and ±6° phase in the pass band.
 TOLERANCE_DB = 1.0

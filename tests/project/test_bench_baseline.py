@@ -4,7 +4,7 @@ Checks: the lambdified right-hand side, outputs and Jacobian equal the CasADi pl
 perturbed states (to round-off; measured worst relative difference 7e-15), and the baseline's closed loop
 from rest over the paper's first board agrees with the CVODES reference
 (:mod:`loader_model.simulation.reference`, rtol 1e-10) in the seat trace norm of
-``tests/test_simulator.py``: ‖s − s_ref‖_rms / ‖s_ref − s_ref(0)‖_rms per signal (f_Sx, f_Sy,
+``tests/simulation/test_simulator.py``: ‖s − s_ref‖_rms / ‖s_ref − s_ref(0)‖_rms per signal (f_Sx, f_Sy,
 θ̈1). Measured on the development machine, LSODA at rtol 1e-6, atol 1e-9: 0.0036 %, 0.0040 %,
 0.0040 % over the first 2.5 s (this test, limit 0.1 %), 0.0039 %, 0.0046 %, 0.0058 % over the
 first 3 s (``make bench``); the fast simulator (ROS2, 1 ms) is at 0.9 %, 1.3 %, 2.2 % there.
@@ -85,7 +85,7 @@ def test_the_lambdified_jacobian_equals_casadis() -> None:
 
 def test_the_baseline_matches_the_cvodes_reference_over_the_first_board(model) -> None:
     """Empty bucket, hold controller, first 2.5 s of the paper's course at 9 km/h: seat trace
-    within 0.1 % (the fast simulator's own limit is 6 %, tests/test_simulator.py)."""
+    within 0.1 % (the fast simulator's own limit is 6 %, tests/simulation/test_simulator.py)."""
     params = plant_parameter_vector(None, "empty")
     road = course_input(paper_course(9.0, settle_s=10.0), params)
     baseline = baseline_simulation(road, params, duration_s=SPAN_S, model=model)

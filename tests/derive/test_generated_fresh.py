@@ -73,7 +73,7 @@ def test_regeneration_is_deterministic_across_hash_seeds(tmp_path: Path) -> None
     for seed in ("0", "4242"):
         out = tmp_path / f"seed{seed}"
         env = {**os.environ, "PYTHONHASHSEED": seed}
-        root = Path(__file__).resolve().parents[1]
+        root = Path(__file__).resolve().parents[2]
         command = [sys.executable, "-m", "derive", "--output", str(out)]
         subprocess.run(command, cwd=root, env=env, check=True, capture_output=True)
         outputs.append({p.name: p.read_bytes() for p in sorted(out.glob("*.py"))})

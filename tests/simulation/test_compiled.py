@@ -51,7 +51,7 @@ def test_a_second_process_loads_the_library_without_compiling(tmp_path, monkeypa
     wrapper.write_text("#!/bin/sh\necho compiler called >&2\nexit 1\n")  # same path, now broken
     script = (
         "import casadi as ca, sys\n"
-        "sys.path.insert(0, 'tests')\n"
+        "sys.path.insert(0, 'tests/simulation')\n"
         "from test_compiled import _function\n"
         "from loader_model.simulation.compiled import compiled_function\n"
         "f = compiled_function(_function())\n"

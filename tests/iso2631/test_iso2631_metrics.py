@@ -28,7 +28,7 @@ from loader_model.iso2631 import (
     weight_acceleration,
     weighted_rms,
 )
-from tests.test_iso2631_annex_a import annex_a_response
+from tests.iso2631.test_iso2631_annex_a import annex_a_response
 
 RATE_HZ = 1000.0
 samples = arrays(

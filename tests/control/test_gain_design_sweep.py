@@ -7,8 +7,8 @@ import pytest
 
 from loader_model.control import DesignPlant, output_feedback_lqr
 from loader_model.control.comfort_design import optimise_gain
+from tests.control.test_gain_design import GRAMIAN_OPTIMUM
 from tests.control_plant import MEASURED, TABLE3_GAIN, loader_design_plant, loader_h2_plants
-from tests.test_gain_design import GRAMIAN_OPTIMUM
 
 Y = list(MEASURED)
 

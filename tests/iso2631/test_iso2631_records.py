@@ -20,7 +20,7 @@ from loader_model.iso2631 import (
     weight_acceleration,
     weighted_rms,
 )
-from tests.test_iso2631_annex_a import annex_a_response
+from tests.iso2631.test_iso2631_annex_a import annex_a_response
 
 RATE_HZ = 200.0
 #: axis: (amplitude m/s² or rad/s², frequency Hz) of the synthetic seat record.

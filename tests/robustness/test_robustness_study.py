@@ -31,7 +31,7 @@ compare = ["virtual-accumulator"]
 
 
 def test_example_study_is_valid_and_names_every_controller() -> None:
-    example = Path(__file__).parents[1] / "loader_model" / "data" / "robustness_example.toml"
+    example = Path(__file__).parents[2] / "loader_model" / "data" / "robustness_example.toml"
     study = load_study(example)
     assert study.controllers == (
         "baseline",

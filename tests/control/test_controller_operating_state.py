@@ -15,7 +15,7 @@ from loader_model.control.linear_controller import operating_state
 from loader_model.parameters.sets import bucket_load
 from loader_model.plant.plant_parameters import plant_parameter_vector
 from loader_model.simulation.ride_control import RIDE_CONTROLLERS, controller_setup
-from tests.test_controllers_linear import case
+from tests.control.test_controllers_linear import case
 
 
 @pytest.mark.parametrize("name", CONTROLLER_NAMES)

@@ -31,7 +31,7 @@ from loader_model.simulation.validity import validity_bounds
 from tests.validity_rows import beyond_bounds
 
 RUNS = 200
-SETTINGS_FILE = str(Path(__file__).parents[1] / "loader_model" / "data" / "controller_refined.toml")
+SETTINGS_FILE = str(Path(__file__).parents[2] / "loader_model" / "data" / "controller_refined.toml")
 COURSES = ("paper", "single", *(f"iso8608:{c}" for c in "ABCDEFGH"))
 #: Indices of :func:`fuzz_cases` (seed 19) run in the default suite: valid and stopped runs.
 FAST_CASES = (0, 1, 2, 12, 19, 22)

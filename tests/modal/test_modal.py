@@ -29,7 +29,7 @@ from loader_model.modal.modes import (
 )
 
 # the paper lies in ../shared beside the project (as in CI); the test is skipped without it
-PAPER = Path(__file__).resolve().parents[2] / "shared" / "reference" / "000_a84aeb4c1d6a3ae9.txt"
+PAPER = Path(__file__).resolve().parents[3] / "shared" / "reference" / "000_a84aeb4c1d6a3ae9.txt"
 RTOL = 1e-9
 
 

@@ -19,7 +19,7 @@ from loader_model.identification import (
     prepare_signals,
     synthesize,
 )
-from tests.test_identification_recovery import LEAKAGE_TRUTH, SHAFT_SPEED
+from tests.identification.test_identification_recovery import LEAKAGE_TRUTH, SHAFT_SPEED
 
 SEEDS = range(20)
 
@@ -40,7 +40,7 @@ def test_leakage_intervals_cover_the_truth_at_about_the_nominal_rate() -> None:
 def test_friction_intervals_cover_the_truth_at_about_the_nominal_rate() -> None:
     # The friction test with the chassis sensors (test_identification_friction), seeds 0-19.
     from loader_model.identification import LiftProfile, identify_friction
-    from tests.test_identification_friction import FRICTION_TRUTH
+    from tests.identification.test_identification_friction import FRICTION_TRUTH
 
     hits = np.zeros(5, dtype=int)
     for seed in SEEDS:
