@@ -97,8 +97,8 @@ def run(args: argparse.Namespace) -> int:
     """
     from loader_model.io.export import check_output_path
     from loader_model.iso2631 import format_evaluation
-    from loader_model.plant.plant_parameters import PlantOptions, plant_parameter_vector
     from loader_model.simulation.result import RESULT_SUFFIXES
+    from loader_model.simulation.scenario import resolve_scenario
     from loader_model.simulation.seat_plot import PLOT_SUFFIXES, plot_seat
     from loader_model.simulation.simulator import ModelValidityError, course_input, simulate
 
@@ -124,27 +124,12 @@ def run(args: argparse.Namespace) -> int:
         from loader_model.control.settings import load_settings
 
         settings_file = load_settings(args.controller)
-    options = PlantOptions(accumulator=args.controller == "passive")
-    params = plant_parameter_vector(args.params, args.load, options)
+    law = "skyhook" if settings_file is not None else args.controller
+    scenario = resolve_scenario(args.params, args.load, controller=law, settings=settings_file)
     course = _course(args.course, args.speed, args.duration, args.seed)
-    control: dict = {}
-    if args.controller in ("virtual-accumulator", "skyhook") or settings_file is not None:
-        from loader_model.simulation.ride_control import controller_setup, plant_controller
-        from loader_model.vehicle.statics import resolve_machine
-
-        law = "skyhook" if settings_file is not None else args.controller
-        _, load = resolve_machine(args.params, args.load)
-        settings, state = controller_setup(
-            law, params, load.pressure_normalisation, settings=settings_file
-        )
-        control = {
-            "controller": plant_controller(law),
-            "settings": settings,
-            "controller_state": state,
-        }
     title = f"{course.name}; {args.controller} controller, load {args.load}"
     try:
-        result = simulate(course_input(course, params), params, duration_s=args.duration, **control)
+        result = simulate(course_input(course, scenario), scenario, duration_s=args.duration)
     except ModelValidityError as error:  # no comfort figure for it: the evidence, then the error
         raise ValueError(_stopped(error, args.output, plot, title)) from None
     print(format_evaluation(result.seat_evaluation(), title=title))

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -40,6 +40,9 @@ from loader_model.control.feasible_descent import (
     reach_margin,
 )
 from loader_model.control.h2_cost import closed_loop, h2_costs
+
+if TYPE_CHECKING:
+    from loader_model.plant.scenario import PlantScenario
 
 __all__ = [
     "DEFAULT_MARGIN",
@@ -83,9 +86,11 @@ def comfort_plants(
     loads: Sequence[str] = ("empty", "full"),
     road_class: str = "C",
     speed_kmh: float = 9.0,
-    params: dict[str, np.ndarray] | None = None,
+    params: dict[str, np.ndarray | PlantScenario] | None = None,
 ) -> tuple[DesignPlant, ...]:
-    """Balanced :class:`DesignPlant` per load with the V_p and p_A r.m.s. limits (3 σ rule)."""
+    """Balanced :class:`DesignPlant` per load with the V_p and p_A r.m.s. limits (3 σ rule);
+    ``params``: plant parameter vector or resolved plant per load
+    (:func:`~loader_model.control.comfort_plant.comfort_case`), default the shipped loader's."""
     from loader_model.parameters.sets import bucket_load
     from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
 

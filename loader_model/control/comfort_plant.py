@@ -26,8 +26,7 @@ k = (1, 1, 0.4); the sum of their mean squares is a_total². Road: :mod:`road_fi
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cache
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -37,6 +36,9 @@ from loader_model.control.settings import (
     default_settings,
     settings_vector_for_plant,
 )
+
+if TYPE_CHECKING:
+    from loader_model.plant.scenario import PlantScenario
 
 __all__ = [
     "FIXED_STATES",
@@ -77,31 +79,42 @@ class ComfortCase:
     sensors: np.ndarray
 
 
-@cache
-def _cached_case(load: str, params_key: tuple[float, ...] | None) -> ComfortCase:
+_CASES: dict[tuple[str, tuple[float, ...] | None], ComfortCase] = {}
+
+
+def _case(load: str, plant: PlantScenario) -> ComfortCase:
+    """The case of ``plant``: its equilibrium, static readings and linearisation, computed once."""
     from loader_model.control.sensors import sensor_signals
     from loader_model.parameters.sets import bucket_load
-    from loader_model.plant.equilibrium import static_state
     from loader_model.plant.linear import linearise_plant
-    from loader_model.plant.plant import plant_function
-    from loader_model.plant.plant_parameters import plant_parameter_vector
 
-    params = plant_parameter_vector(None, load) if params_key is None else np.array(params_key)
-    x0, u0 = static_state(params)
-    y = np.asarray(plant_function()(x0, u0, np.zeros(11), params)[1]).ravel()
+    params = np.array(plant.params)
     settings = settings_vector_for_plant(
-        default_settings(), params, bucket_load(load).pressure_normalisation
+        default_settings(), params, bucket_load(load).pressure_normalisation, hold_command=plant.u0
     )
-    plant = linearise_plant(params).state_space(name=f"plant_{load}")
-    return ComfortCase(load, params, plant, settings, sensor_signals(y))
+    linear = linearise_plant(params, np.array(plant.x0), plant.u0)
+    system = linear.state_space(name=f"plant_{load}")
+    return ComfortCase(load, params, system, settings, sensor_signals(np.array(plant.y0)))
 
 
-def comfort_case(load: str, params: np.ndarray | None = None) -> ComfortCase:
-    """:class:`ComfortCase` of ``load`` (``"empty"`` or ``"full"``), default parameters or ``params``."""
+def comfort_case(load: str, params: np.ndarray | PlantScenario | None = None) -> ComfortCase:
+    """:class:`ComfortCase` of ``load`` (``"empty"`` or ``"full"``): default parameters,
+    ``params`` (a vector) or a resolved plant (its equilibrium is not computed again); cached per
+    load and parameter vector."""
+    from loader_model.plant.scenario import PlantScenario, resolve_plant
+
     if load not in ("empty", "full"):
         raise ValueError(f"load must be 'empty' or 'full'; got {load!r}")
-    key = None if params is None else tuple(float(v) for v in np.asarray(params).ravel())
-    return _cached_case(load, key)
+    plant = params if isinstance(params, PlantScenario) else None
+    vector = None if params is None else np.asarray(params if plant is None else plant.params)
+    key = (load, None if vector is None else tuple(float(v) for v in vector.ravel()))
+    if key not in _CASES:
+        if plant is None:
+            plant = (
+                resolve_plant(None, load) if vector is None else PlantScenario.from_vector(vector)
+            )
+        _CASES[key] = _case(load, plant)
+    return _CASES[key]
 
 
 def skyhook_structure(case: ComfortCase) -> Any:

@@ -248,15 +248,22 @@ def settings_vector(
 
 
 def settings_vector_for_plant(
-    settings: ControllerSettings, params: np.ndarray, pressure_norm: float
+    settings: ControllerSettings,
+    params: np.ndarray,
+    pressure_norm: float,
+    *,
+    hold_command: float | None = None,
 ) -> np.ndarray:
     """:func:`settings_vector` with V_p,max, g and N_x from the plant parameter vector ``params``
-    and the holding command from its static equilibrium (boom angle φ0 = 0, the plant's origin)."""
+    and the holding command from its static equilibrium (boom angle φ0 = 0, the plant's origin).
+
+    ``hold_command``: the equilibrium's u0 when the caller has it
+    (:class:`~loader_model.plant.scenario.PlantScenario`); default: computed from ``params``."""
     from loader_model.plant.equilibrium import static_state
     from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
 
     named = dict(zip(PLANT_PARAMETER_NAMES, np.asarray(params, dtype=float), strict=True))
-    _, hold = static_state(params)
+    hold = static_state(params)[1] if hold_command is None else float(hold_command)
     return settings_vector(
         settings,
         pressure_norm=pressure_norm,

@@ -108,20 +108,21 @@ def _closed_loops(
     if gains is not None:
         settings = dataclasses.replace(settings, k_fb=tuple(float(g) for g in gains))
     norm = bucket_load(load).pressure_normalisation
-    plants: dict[bool, tuple[Any, np.ndarray, np.ndarray]] = {}
+    plants: dict[bool, tuple[Any, np.ndarray, np.ndarray, float]] = {}
     loops = {}
     for name in LINEAR_CONTROLLERS:
         accumulator = name == "passive"
-        if accumulator not in plants:
+        if accumulator not in plants:  # one equilibrium per plant
             params = _parameters(load, accumulator, overrides)
             x0, u0 = static_state(params)
             y0 = np.asarray(plant_function()(x0, u0, np.zeros(11), params)[1]).ravel()
-            plants[accumulator] = (linearise_plant(params, x0, u0).state_space(), params, y0)
-        plant, params, y0 = plants[accumulator]
+            linear = linearise_plant(params, x0, u0).state_space()
+            plants[accumulator] = (linear, params, y0, u0)
+        plant, params, y0, u0 = plants[accumulator]
         if name in ("baseline", "passive"):  # the pump holds its static command
             loops[name] = (plant, params)
             continue
-        vector = settings_vector_for_plant(settings, params, norm)
+        vector = settings_vector_for_plant(settings, params, norm, hold_command=u0)
         controller = linear_controller(name, vector, sensor_signals(y0)).continuous
         loops[name] = (closed_loop(plant, controller), params)
     return loops

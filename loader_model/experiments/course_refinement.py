@@ -28,13 +28,16 @@ __all__ = ["course_cost", "refine_on_course"]
 
 
 def _drive(k_fb: np.ndarray, load: str, speed_kmh: float, params: np.ndarray | None) -> float:
-    from loader_model.experiments.trials import controller_arguments, plant_for
+    from loader_model.experiments.trials import controller_scenario, plant_scenario
+    from loader_model.parameters.sets import bucket_load
+    from loader_model.plant.scenario import PlantScenario
     from loader_model.simulation.courses import paper_course
     from loader_model.simulation.simulator import course_input, simulate
 
-    params = plant_for("skyhook", load) if params is None else params
-    arguments = controller_arguments("skyhook-optimised", load, params, tuple(k_fb))
-    result = simulate(course_input(paper_course(speed_kmh), params), params, **arguments)
+    plant = plant_scenario(load, False) if params is None else PlantScenario.from_vector(params)
+    norm = bucket_load(load).pressure_normalisation
+    scenario = controller_scenario("skyhook-optimised", plant, norm, tuple(k_fb))
+    result = simulate(course_input(paper_course(speed_kmh), scenario), scenario)
     return float(result.seat_evaluation().total_m_s2)
 
 

@@ -33,15 +33,13 @@ def _pyplot():
 
 def single_obstacle_run(controller: str, speed_kmh: float, load: str = "empty", settle_s=3.0):
     """Simulate one board at ``speed_kmh`` with ``controller`` (the experiment's plant)."""
-    from loader_model.experiments.trials import controller_arguments, plant_for
+    from loader_model.experiments.trials import trial_scenario
     from loader_model.simulation.courses import single_obstacle_course
     from loader_model.simulation.simulator import course_input, simulate
 
-    params = plant_for(controller, load)
+    scenario = trial_scenario(controller, load)
     course = single_obstacle_course(speed_kmh, settle_s=settle_s)
-    return simulate(
-        course_input(course, params), params, **controller_arguments(controller, load, params)
-    )
+    return simulate(course_input(course, scenario), scenario)
 
 
 def plot_fig13(path: Path) -> Path:

@@ -39,7 +39,7 @@ def diagnostic_rows() -> Rows:
     The 5 mm course keeps all tyres on the ground (linear regime); it separates the effect of the
     controllers from the lift-offs and the rigid-wheel edge.
     """
-    from loader_model.experiments.trials import CONTROLLERS, controller_arguments, plant_for
+    from loader_model.experiments.trials import CONTROLLERS, trial_scenario
     from loader_model.simulation.courses import paper_course
     from loader_model.simulation.roads import board_course
     from loader_model.simulation.simulator import course_input, simulate
@@ -50,12 +50,8 @@ def diagnostic_rows() -> Rows:
         course = dataclasses.replace(paper_course(9.0), profile=profile)
         row = [f"{height * 1e3:g} mm"]
         for controller in CONTROLLERS:
-            params = plant_for(controller, "empty")
-            result = simulate(
-                course_input(course, params),
-                params,
-                **controller_arguments(controller, "empty", params),
-            )
+            scenario = trial_scenario(controller, "empty")
+            result = simulate(course_input(course, scenario), scenario)
             lifts = sum(e.kind == "tyre_off_ground" for e in result.events)
             row.append(f"{result.seat_evaluation().total_m_s2:.3f} ({lifts})")
         rows.append(row)

@@ -23,11 +23,14 @@ trial])``: the same seed gives the same trials whatever the order or the worker 
 from __future__ import annotations
 
 import dataclasses
-import functools
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from loader_model.plant.scenario import PlantScenario
+    from loader_model.simulation.scenario import Scenario
 
 __all__ = [
     "CONTROLLERS",
@@ -40,7 +43,12 @@ __all__ = [
     "TRIAL_SENSOR_NOISE",
     "TrialOutcome",
     "TrialSpec",
+    "controller_arguments",
+    "controller_scenario",
+    "plant_for",
+    "plant_scenario",
     "run_trial",
+    "trial_scenario",
     "trial_specs",
 ]
 
@@ -173,59 +181,89 @@ def trial_specs(
     return specs
 
 
-_PLANTS: dict[tuple[str, bool], np.ndarray] = {}
+_PLANTS: dict[tuple[str, bool], PlantScenario] = {}
+_SCENARIOS: dict[tuple[str, str, tuple[float, ...] | None], Scenario] = {}
 
 
-def _plant(load: str, accumulator: bool) -> np.ndarray:
-    """Plant parameters per load and accumulator, built once per process."""
-    from loader_model.plant.plant_parameters import PlantOptions, plant_parameter_vector
+def plant_scenario(load: str, accumulator: bool) -> PlantScenario:
+    """The experiment's plant per load and accumulator (the shipped loader), resolved once per
+    process (:func:`~loader_model.plant.scenario.resolve_plant`)."""
+    from loader_model.plant.plant_parameters import PlantOptions
+    from loader_model.plant.scenario import resolve_plant
 
-    key = (load, accumulator)
+    key = (load, bool(accumulator))
     if key not in _PLANTS:
-        _PLANTS[key] = plant_parameter_vector(None, load, PlantOptions(accumulator=accumulator))
+        _PLANTS[key] = resolve_plant(None, load, PlantOptions(accumulator=bool(accumulator)))
     return _PLANTS[key]
+
+
+def _check_controller(controller: str, k_fb: tuple[float, ...] | None) -> None:
+    if controller not in (*CONTROLLERS, *DESIGNED_CONTROLLERS):
+        allowed = [*CONTROLLERS, *DESIGNED_CONTROLLERS]
+        raise ValueError(f"controller {controller!r} is unknown; allowed: {allowed}")
+    if controller in DESIGNED_CONTROLLERS and k_fb is None:
+        raise ValueError(f"controller {controller!r} needs its gains k_fb")
+
+
+def controller_scenario(
+    controller: str,
+    plant: PlantScenario,
+    pressure_norm_pa: float,
+    k_fb: tuple[float, ...] | None = None,
+) -> Scenario:
+    """``controller`` on ``plant`` (baseline and passive: the pump holds its static command; the
+    designed controllers: the skyhook with gains ``k_fb``); ``pressure_norm_pa`` is ‖p_A‖∞ of the
+    bucket load (section 3.3)."""
+    from loader_model.control.settings import default_settings, with_gains
+    from loader_model.simulation.scenario import ride_scenario
+
+    _check_controller(controller, k_fb)
+    if controller in ("baseline", "passive"):
+        return ride_scenario(plant, controller)
+    law, settings = controller, None
+    if controller in DESIGNED_CONTROLLERS:
+        law, settings = "skyhook", with_gains(default_settings(), k_fb, controller)
+    return ride_scenario(plant, law, settings, pressure_norm_pa=pressure_norm_pa)
 
 
 def controller_arguments(
     controller: str, load: str, params: np.ndarray, k_fb: tuple[float, ...] | None = None
 ) -> dict[str, Any]:
     """Keyword arguments of :func:`~loader_model.simulation.simulator.simulate` for ``controller``
-    (baseline and passive: the pump holds its static command; the designed controllers: the
-    skyhook with gains ``k_fb``)."""
-    from loader_model.control.settings import default_settings, with_gains
+    on the plant ``params`` (:func:`controller_scenario`; baseline and passive: none, the pump
+    holds its static command)."""
     from loader_model.parameters.sets import bucket_load
-    from loader_model.simulation.ride_control import controller_setup, plant_controller
+    from loader_model.plant.scenario import PlantScenario
 
-    if controller not in (*CONTROLLERS, *DESIGNED_CONTROLLERS):
-        allowed = [*CONTROLLERS, *DESIGNED_CONTROLLERS]
-        raise ValueError(f"controller {controller!r} is unknown; allowed: {allowed}")
+    _check_controller(controller, k_fb)
     if controller in ("baseline", "passive"):
         return {}
-    law, settings = controller, None
-    if controller in DESIGNED_CONTROLLERS:
-        if k_fb is None:
-            raise ValueError(f"controller {controller!r} needs its gains k_fb")
-        law, settings = "skyhook", with_gains(default_settings(), k_fb, controller)
-    vector, state = controller_setup(
-        law, params, bucket_load(load).pressure_normalisation, settings=settings
+    plant = PlantScenario.from_vector(params)
+    scenario = controller_scenario(
+        controller, plant, bucket_load(load).pressure_normalisation, k_fb
     )
     return {
-        "controller": plant_controller(law),
-        "settings": vector,
-        "controller_state": state,
+        "controller": scenario.controller,
+        "settings": scenario.settings,
+        "controller_state": scenario.controller_state,
     }
 
 
 def plant_for(controller: str, load: str) -> np.ndarray:
     """Plant parameters of ``load`` with the accumulator connected only for ``passive``."""
-    return _plant(load, controller == "passive")
+    return plant_scenario(load, controller == "passive").params
 
 
-@functools.cache
-def _trial_arguments(controller: str, load: str, k_fb: tuple[float, ...] | None) -> dict[str, Any]:
-    """:func:`controller_arguments` on :func:`plant_for`, once per process and condition (the
-    controller's fixed point takes a matrix logarithm; every trial of a condition shares it)."""
-    return controller_arguments(controller, load, plant_for(controller, load), k_fb)
+def trial_scenario(controller: str, load: str, k_fb: tuple[float, ...] | None = None) -> Scenario:
+    """The scenario of one condition (:func:`controller_scenario` on :func:`plant_scenario`),
+    built once per process and condition: every trial of the condition shares the plant's
+    equilibrium and the controller's fixed point (a matrix logarithm)."""
+    key = (controller, load, None if k_fb is None else tuple(float(k) for k in k_fb))
+    if key not in _SCENARIOS:
+        plant = plant_scenario(load, controller == "passive")
+        norm = plant.load.pressure_normalisation
+        _SCENARIOS[key] = controller_scenario(controller, plant, norm, key[2])
+    return _SCENARIOS[key]
 
 
 def run_trial(spec: TrialSpec) -> TrialOutcome:
@@ -234,17 +272,16 @@ def run_trial(spec: TrialSpec) -> TrialOutcome:
     from loader_model.simulation.courses import paper_course
     from loader_model.simulation.simulator import course_input, simulate
 
-    params = plant_for(spec.controller, spec.load)
+    scenario = trial_scenario(spec.controller, spec.load, spec.k_fb)
     course = paper_course(
         spec.speed_kmh, position_jitter_m=POSITION_JITTER_M, seed=spec.course_seed
     )
     course = dataclasses.replace(course, speed_m_s=course.speed_m_s * spec.speed_factor)
     result = simulate(
-        course_input(course, params),
-        params,
+        course_input(course, scenario),
+        scenario,
         sensors=SensorModel(noise_std=TRIAL_SENSOR_NOISE, seed=spec.course_seed),
         duration_s=spec.duration_s,
-        **_trial_arguments(spec.controller, spec.load, spec.k_fb),
     )
     evaluation = result.seat_evaluation()
     return TrialOutcome(

@@ -97,6 +97,16 @@ class PlantOptions:
         """Both chambers closed: pump at zero displacement, valves shut, no leakage or friction."""
         return cls(pump=False, valves=False, leakage=False, friction=False, accumulator=False)
 
+    def switches(self) -> dict[str, float]:
+        """The switch entries of the parameter vector (0.0 or 1.0), by parameter name."""
+        return {
+            "pump_on": float(self.pump),
+            "valves_on": float(self.valves),
+            "leakage_on": float(self.leakage),
+            "friction_on": float(self.friction),
+            "accumulator_on": float(self.accumulator),
+        }
+
 
 def plant_parameter_vector(
     loader: Any, load: Any, options: PlantOptions | None = None, *, check: bool = True
@@ -167,10 +177,6 @@ def plant_parameter_vector(
         "d_orifice": acc.orifice_diameter,
         "C_d": acc.discharge_coefficient,
         "dp_laminar": acc.laminar_transition_pressure,
-        "pump_on": float(options.pump),
-        "valves_on": float(options.valves),
-        "leakage_on": float(options.leakage),
-        "friction_on": float(options.friction),
-        "accumulator_on": float(options.accumulator),
     }
+    values |= options.switches()
     return np.array([float(values[name]) for name in PLANT_PARAMETER_NAMES])

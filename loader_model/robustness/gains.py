@@ -18,12 +18,15 @@ sampled plant linearised at its static equilibrium); positive means unstable.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from loader_model.robustness.sampling import SampleSpec, sample_specs
 from loader_model.robustness.study import Study
+
+if TYPE_CHECKING:
+    from loader_model.plant.scenario import PlantScenario
 
 __all__ = ["Gains", "max_pole_real", "resolve_gains"]
 
@@ -107,9 +110,14 @@ def resolve_gains(study: Study) -> Gains:
 
 
 def max_pole_real(
-    params: np.ndarray, load: str, speed_kmh: float, road_class: str, gains: list[Any]
+    params: np.ndarray | PlantScenario,
+    load: str,
+    speed_kmh: float,
+    road_class: str,
+    gains: list[Any],
 ) -> list[float]:
-    """Largest real part [rad/s] of the plant-and-skyhook poles for each gain on one plant."""
+    """Largest real part [rad/s] of the plant-and-skyhook poles for each gain on one plant
+    (a parameter vector, or a resolved plant whose equilibrium is reused)."""
     from loader_model.control.comfort_design import comfort_plants, evaluate_gain
 
     (plant,) = comfort_plants((load,), road_class, speed_kmh, {load: params})

@@ -1,24 +1,26 @@
 """One sample of a study: build its plant and road, run every controller, one row per controller.
 
 Composes what exists: the parameter files' validated :func:`~loader_model.parameters.sets.replace`,
-:func:`~loader_model.plant.plant_parameters.plant_parameter_vector`, the courses, the simulator and
-the ride controllers. Nothing here stops a study: a sample whose plant fails the parameter checks,
-or a run that raises (:class:`~loader_model.simulation.simulator.SimulationError` when the
-integration leaves the finite numbers, e.g. an unstable closed loop), gives rows with ``failed``
-true and the reason. CasADi Functions are built once per worker process (module-level caches here
-and in :mod:`~loader_model.simulation.stepper`), never per sample.
+one :class:`~loader_model.plant.scenario.PlantScenario` per sample (vector and static equilibrium,
+resolved once and shared by the road input and every controller; ``passive`` connects the
+accumulator, a second equilibrium), the courses, the simulator and the ride controllers. Nothing
+here stops a study: a sample whose plant fails the parameter checks, or a run that raises
+(:class:`~loader_model.simulation.simulator.SimulationError` when the integration leaves the
+finite numbers, e.g. an unstable closed loop), gives rows with ``failed`` true and the reason.
+CasADi Functions are built once per worker process (module-level caches here and in
+:mod:`~loader_model.simulation.stepper`), never per sample.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from loader_model.robustness.gains import Gains, max_pole_real
-from loader_model.robustness.sampling import SampleSpec, sample_plant_vector
+from loader_model.robustness.sampling import SampleSpec, sample_plant
 from loader_model.robustness.sensors import (
     corrupted_fixed_point,
     sensor_controller,
@@ -28,12 +30,17 @@ from loader_model.robustness.sensors import (
 from loader_model.robustness.study import Study
 from loader_model.simulation.simulator import course_input, simulate
 
+if TYPE_CHECKING:
+    from loader_model.plant.scenario import PlantScenario
+
 __all__ = ["AXES", "run_batch", "run_sample"]
 
 #: ISO 2631-1 axes of the seat evaluation (x = fore-aft, z = vertical, pitch).
 AXES: tuple[str, ...] = ("x", "z", "pitch")
 _CONTROLLERS: dict[str, Any] = {}
 _IDEAL = np.array([1.0] * 5 + [0.0] * 5)
+#: Controllers in which the pump holds its static command (no sensors read).
+_HOLDING = ("baseline", "passive")
 
 
 def _hold_controller() -> Any:
@@ -98,7 +105,7 @@ def _run(
     study: Study,
     gains: Gains,
     name: str,
-    params: np.ndarray,
+    plant: PlantScenario,
     load: tuple[str, float],
     road: Any,
     errors: np.ndarray,
@@ -106,37 +113,30 @@ def _run(
 ) -> dict:
     """Simulate controller ``name`` on one plant; ``load`` is (case, pressure norm ‖p_A‖ in Pa),
     ``errors`` the sensors' gains and offsets (:func:`~loader_model.robustness.sensors.sensor_errors`),
-    ``sensors`` their noise (:func:`~loader_model.robustness.sensors.sensor_model`)."""
+    ``sensors`` their noise (:func:`~loader_model.robustness.sensors.sensor_model`). The plant's
+    equilibrium is taken from ``plant``; ``passive`` connects the accumulator (a new equilibrium)."""
     from loader_model.control.settings import default_settings
-    from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
-    from loader_model.simulation.ride_control import controller_setup
+    from loader_model.simulation.ride_control import plant_controller_setup
+    from loader_model.simulation.scenario import Scenario, closed_loop
 
     if name == "passive":
-        params = params.copy()
-        params[PLANT_PARAMETER_NAMES.index("accumulator_on")] = 1.0
-    if name in ("baseline", "passive"):
-        from loader_model.plant.equilibrium import static_state
-
-        arguments: dict[str, Any] = {
-            "controller": _hold_controller(),
-            "settings": [static_state(params)[1]],
-        }
+        plant = plant.with_options(dataclasses.replace(plant.options, accumulator=True))
+    if name in _HOLDING:
+        scenario = closed_loop(plant, _hold_controller(), [plant.u0], name=name)
     else:
         kind = "virtual-accumulator" if name == "virtual-accumulator" else "skyhook"
         settings = default_settings()
         if name in gains:
             settings = dataclasses.replace(settings, k_fb=gains[name][load[0]])
-        vector, state = controller_setup(kind, params, load[1], settings)
+        vector, state = plant_controller_setup(kind, plant, load[1], settings)
         if np.any(errors != _IDEAL):
-            state = corrupted_fixed_point(kind, vector, params, errors)
-        arguments = {
-            "controller": sensor_controller(kind),
-            "settings": np.concatenate([vector, errors]),
-            "controller_state": state,
-            "sensors": sensors,
-        }
-    result = simulate(road, params, duration_s=study.duration_s, **arguments)
-    return _metrics(result, float(params[PLANT_PARAMETER_NAMES.index("V_p_max")]))
+            state = corrupted_fixed_point(kind, vector, plant, errors)
+        controller = sensor_controller(kind)
+        scenario = Scenario(plant, controller, np.concatenate([vector, errors]), state, name)
+    result = simulate(
+        road, scenario, duration_s=study.duration_s, sensors=None if name in _HOLDING else sensors
+    )
+    return _metrics(result, plant.parameter("V_p_max"))
 
 
 def run_sample(study: Study, gains: Gains, spec: SampleSpec) -> list[dict[str, Any]]:
@@ -169,8 +169,8 @@ def run_sample(study: Study, gains: Gains, spec: SampleSpec) -> list[dict[str, A
     errors = sensor_errors(dict(spec.values))
     noise = sensor_model(dict(spec.values), spec.road_seed)
     try:
-        params, load = sample_plant_vector(spec)
-        road = course_input(_course(study, spec), params)
+        plant = sample_plant(spec)
+        road = course_input(_course(study, spec), plant)
         setup_error = None
     except Exception as error:  # a failed sample never stops the study
         setup_error = _reason(error)
@@ -179,7 +179,7 @@ def run_sample(study: Study, gains: Gains, spec: SampleSpec) -> list[dict[str, A
         try:
             speed = spec.speed_kmh * spec.speed_factor
             gain_list = [gains[n][spec.load] for n in gains]
-            reals = max_pole_real(params, spec.load, speed, study.road_class, gain_list)
+            reals = max_pole_real(plant, spec.load, speed, study.road_class, gain_list)
             poles = dict(zip(gains, reals, strict=True))
         except Exception:  # the margin is then reported as missing (NaN)
             poles = {}
@@ -189,8 +189,8 @@ def run_sample(study: Study, gains: Gains, spec: SampleSpec) -> list[dict[str, A
             row |= {"failed": True, "reason": setup_error}
         else:
             try:
-                case = (spec.load, float(load.pressure_normalisation))
-                row |= _run(study, gains, name, params, case, road, errors, noise)
+                case = (spec.load, float(plant.load.pressure_normalisation))
+                row |= _run(study, gains, name, plant, case, road, errors, noise)
                 row |= {"failed": False, "reason": ""}
             except Exception as error:  # a failed run never stops the study
                 row |= {"failed": True, "reason": _reason(error)}

@@ -13,13 +13,16 @@ from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from loader_model.robustness.study import Study
 
-__all__ = ["SampleSpec", "design_matrix", "sample_plant_vector", "sample_specs"]
+if TYPE_CHECKING:
+    from loader_model.plant.scenario import PlantScenario
+
+__all__ = ["SampleSpec", "design_matrix", "sample_plant", "sample_plant_vector", "sample_specs"]
 
 
 @dataclass(frozen=True)
@@ -116,16 +119,9 @@ def sample_specs(study: Study, count: int | None = None, stream: int = 0) -> lis
     return specs
 
 
-def sample_plant_vector(spec: SampleSpec) -> tuple[np.ndarray, Any]:
-    """Plant parameter vector (accumulator shut) and bucket load of a sample.
-
-    Raises
-    ------
-    ValueError
-        From the parameter files' range and consistency checks.
-    """
+def _sample_sets(spec: SampleSpec) -> tuple[Any, Any]:
+    """The sample's loader and bucket load: the shipped sets with its values, each validated."""
     from loader_model import parameters
-    from loader_model.plant.plant_parameters import plant_parameter_vector
 
     plant = [(p, v) for p, v in spec.values if not p.startswith("sensors.")]
     loader_updates = {p: v for p, v in plant if not p.startswith("load.")}
@@ -135,4 +131,33 @@ def sample_plant_vector(spec: SampleSpec) -> tuple[np.ndarray, Any]:
         loader = parameters.replace(loader, loader_updates)
     if load_updates:
         load = parameters.replace(load, load_updates)
+    return loader, load
+
+
+def sample_plant_vector(spec: SampleSpec) -> tuple[np.ndarray, Any]:
+    """Plant parameter vector (accumulator shut) and bucket load of a sample.
+
+    Raises
+    ------
+    ValueError
+        From the parameter files' range and consistency checks.
+    """
+    from loader_model.plant.plant_parameters import plant_parameter_vector
+
+    loader, load = _sample_sets(spec)
     return plant_parameter_vector(loader, load, check=True), load
+
+
+def sample_plant(spec: SampleSpec) -> PlantScenario:
+    """The sample's plant (accumulator shut), resolved once: the vector of
+    :func:`sample_plant_vector` with its static equilibrium
+    (:func:`~loader_model.plant.scenario.resolve_plant`).
+
+    Raises
+    ------
+    ValueError
+        From the parameter files' range and consistency checks.
+    """
+    from loader_model.plant.scenario import resolve_plant
+
+    return resolve_plant(*_sample_sets(spec))

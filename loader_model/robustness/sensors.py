@@ -17,11 +17,14 @@ is computed with ideal sensors.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from loader_model.parameters.fields import Range
+
+if TYPE_CHECKING:
+    from loader_model.plant.scenario import PlantScenario
 
 __all__ = [
     "SENSOR_ERROR_FIELDS",
@@ -105,18 +108,15 @@ def sensor_controller(kind: str) -> Any:
 
 
 def corrupted_fixed_point(
-    kind: str, vector: np.ndarray, params: np.ndarray, errors: np.ndarray
+    kind: str, vector: np.ndarray, plant: PlantScenario, errors: np.ndarray
 ) -> np.ndarray:
-    """The controller's fixed point at the corrupted static readings (its initial state)."""
+    """The controller's fixed point at the corrupted static readings (its initial state), from
+    the static outputs of ``plant`` (no second equilibrium)."""
     from loader_model.control.linear_controller import linear_controller
     from loader_model.control.sensors import sensor_signals
-    from loader_model.plant.equilibrium import static_state
-    from loader_model.plant.plant import EXOGENOUS_NAMES, plant_function
     from loader_model.simulation.ride_control import RIDE_CONTROLLERS
 
-    state, command = static_state(params)
-    outputs = plant_function()(state, command, np.zeros(len(EXOGENOUS_NAMES)), params)[1]
-    readings = sensor_signals(np.asarray(outputs, dtype=float).ravel())
+    readings = sensor_signals(plant.y0)
     readings = errors[:5] * readings + errors[5:]
     fixed = linear_controller(RIDE_CONTROLLERS[kind], vector, readings)
     return np.asarray(fixed.operating_state, dtype=float).ravel()

@@ -10,14 +10,17 @@ semi-integrators start settled instead of seeing the static pressure as a step.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import casadi as ca
 import numpy as np
 
 from loader_model.plant.plant import OUTPUT_NAMES
 
-__all__ = ["RIDE_CONTROLLERS", "controller_setup", "plant_controller"]
+if TYPE_CHECKING:
+    from loader_model.plant.scenario import PlantScenario
+
+__all__ = ["RIDE_CONTROLLERS", "controller_setup", "plant_controller", "plant_controller_setup"]
 
 #: Command-line names of the ride controllers and the controller Function each one uses.
 RIDE_CONTROLLERS = {
@@ -34,8 +37,7 @@ def plant_controller(name: str) -> ca.Function:
     from loader_model.control.controllers import controller_function
     from loader_model.control.sensors import SENSOR_NAMES
 
-    if name not in RIDE_CONTROLLERS:
-        raise ValueError(f"controller {name!r} is unknown; allowed: {list(RIDE_CONTROLLERS)}")
+    _check(name)
     inner = controller_function(RIDE_CONTROLLERS[name])
     z = ca.SX.sym("z", inner.size1_in(0))
     y = ca.SX.sym("y", len(OUTPUT_NAMES))
@@ -66,19 +68,37 @@ def controller_setup(
         ‖p_A‖∞ of the bucket load (section 3.3: 100 bar empty, 200 bar full).
     settings : loader_model.control.settings.ControllerSettings, optional
         Default: the shipped Table 3 settings.
+
+    Notes
+    -----
+    Computes the plant's equilibrium; :func:`plant_controller_setup` takes it from a
+    :class:`~loader_model.plant.scenario.PlantScenario` instead.
     """
+    from loader_model.plant.scenario import PlantScenario
+
+    _check(name)
+    return plant_controller_setup(
+        name, PlantScenario.from_vector(params), pressure_norm_pa, settings
+    )
+
+
+def plant_controller_setup(
+    name: str, plant: PlantScenario, pressure_norm_pa: float, settings: Any = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`controller_setup` on a resolved plant: its parameters, u0 and static outputs y0,
+    without computing the equilibrium again."""
     from loader_model.control.linear_controller import operating_state
     from loader_model.control.sensors import sensor_signals
     from loader_model.control.settings import default_settings, settings_vector_for_plant
-    from loader_model.plant.equilibrium import static_state
-    from loader_model.plant.plant import plant_function
 
+    _check(name)
+    vector = settings_vector_for_plant(
+        settings or default_settings(), plant.params, pressure_norm_pa, hold_command=plant.u0
+    )
+    fixed = operating_state(RIDE_CONTROLLERS[name], vector, sensor_signals(plant.y0))
+    return vector, np.asarray(fixed, dtype=float).ravel()
+
+
+def _check(name: str) -> None:
     if name not in RIDE_CONTROLLERS:
         raise ValueError(f"controller {name!r} is unknown; allowed: {list(RIDE_CONTROLLERS)}")
-    vector = settings_vector_for_plant(settings or default_settings(), params, pressure_norm_pa)
-    state, command = static_state(params)
-    outputs = np.asarray(
-        plant_function()(state, command, np.zeros(11), params)[1], dtype=float
-    ).ravel()
-    fixed = operating_state(RIDE_CONTROLLERS[name], vector, sensor_signals(outputs))
-    return vector, np.asarray(fixed, dtype=float).ravel()

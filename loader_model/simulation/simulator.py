@@ -1,6 +1,8 @@
 """The closed-loop simulator: the plant over a road input with a discrete controller at 1 kHz.
 
-:func:`simulate` starts from the plant's static equilibrium
+:func:`simulate` runs a :class:`~loader_model.simulation.scenario.Scenario` (plant, static
+equilibrium, controller, its settings and start, resolved once; from a bare parameter vector and
+controller arguments it builds one) from the plant's static equilibrium
 (:func:`~loader_model.plant.equilibrium.static_state`), evaluates the controller every period h
 (zero-order hold on its command) and integrates the plant over each period with the compiled
 ROS2 scheme of :mod:`~loader_model.simulation.stepper`, rolled over chunks of periods by
@@ -24,18 +26,14 @@ import casadi as ca
 import numpy as np
 
 from loader_model.control.sensors import SENSOR_NAMES, SensorModel, quantise
-from loader_model.plant.equilibrium import static_state
-from loader_model.plant.plant import EXOGENOUS_NAMES, OUTPUT_NAMES, STATE_NAMES, plant_function
-from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
+from loader_model.plant.plant import EXOGENOUS_NAMES, OUTPUT_NAMES, STATE_NAMES
+from loader_model.plant.scenario import PlantScenario
 from loader_model.simulation import validity_check
-from loader_model.simulation.controllers import (
-    CONTROLLER_PERIOD_S,
-    check_controller,
-    hold_command_controller,
-)
+from loader_model.simulation.controllers import CONTROLLER_PERIOD_S
 from loader_model.simulation.courses import Course
 from loader_model.simulation.events import DEFAULT_AIRBORNE_MIN_S, find_events
 from loader_model.simulation.result import SimulationResult
+from loader_model.simulation.scenario import Scenario, as_plant, as_scenario
 from loader_model.simulation.stepper import compile_period
 from loader_model.simulation.travel import RoadInput
 from loader_model.simulation.validity import ValidityBounds, resolve_bounds
@@ -57,26 +55,26 @@ DEFAULT_CHUNK_PERIODS = 500
 _STATE_OUTPUTS = frozenset(OUTPUT_NAMES) & frozenset(STATE_NAMES)
 
 
-def _parameter(params: np.ndarray, name: str) -> float:
-    return float(params[PLANT_PARAMETER_NAMES.index(name)])
-
-
-def course_input(course: Course, params: np.ndarray, sample_rate_hz: float = 1000.0) -> RoadInput:
+def course_input(
+    course: Course,
+    params: np.ndarray | PlantScenario | Scenario,
+    sample_rate_hz: float = 1000.0,
+) -> RoadInput:
     """The road input table of ``course`` for the loader of ``params``.
 
     Wheelbase A_x − B_x from the parameters, and the horizontal input w_x = −c tan β with
     c_i = F_iy0 / k_ix (static tyre load over longitudinal stiffness), the first-order
     effective-plane force that :mod:`~loader_model.simulation.travel` recommends for this plant.
+    ``params`` may be a parameter vector (its equilibrium is computed here) or a
+    :class:`~loader_model.plant.scenario.PlantScenario` or
+    :class:`~loader_model.simulation.scenario.Scenario` (its static tyre loads are used).
     """
-    params = np.asarray(params, dtype=float)
-    x0, u0 = static_state(params)
-    _, y = plant_function()(x0, u0, np.zeros(len(EXOGENOUS_NAMES)), params)
-    outputs = dict(zip(OUTPUT_NAMES, np.asarray(y, dtype=float).ravel(), strict=True))
+    plant = as_plant(params)
     gains = (
-        outputs["F_Ay"] / _parameter(params, "k_Ax"),
-        outputs["F_By"] / _parameter(params, "k_Bx"),
+        plant.output("F_Ay") / plant.parameter("k_Ax"),
+        plant.output("F_By") / plant.parameter("k_Bx"),
     )
-    wheelbase = _parameter(params, "A_x") - _parameter(params, "B_x")
+    wheelbase = plant.parameter("A_x") - plant.parameter("B_x")
     return course.road_input(wheelbase, sample_rate_hz=sample_rate_hz, slope_to_x_m=gains)
 
 
@@ -95,7 +93,7 @@ def exogenous_table(
 
 def simulate(
     road: RoadInput,
-    params: Sequence[float] | np.ndarray,
+    params: Sequence[float] | np.ndarray | PlantScenario | Scenario,
     controller: ca.Function | None = None,
     *,
     settings: Sequence[float] = (),
@@ -116,8 +114,13 @@ def simulate(
     ----------
     road : RoadInput
         Road table (:func:`course_input`); interpolated at the controller's instants.
-    params : array_like
-        Plant parameters (:data:`~loader_model.plant.plant_parameters.PLANT_PARAMETER_NAMES`).
+    params : array_like, PlantScenario or Scenario
+        Plant parameters (:data:`~loader_model.plant.plant_parameters.PLANT_PARAMETER_NAMES`;
+        their equilibrium is computed here), a resolved plant
+        (:class:`~loader_model.plant.scenario.PlantScenario`) or a whole closed loop
+        (:class:`~loader_model.simulation.scenario.Scenario`, which holds the controller, its
+        settings and its start: then ``controller``, ``settings`` and ``controller_state`` are
+        not given).
     controller : casadi.Function, optional
         ``controller(z, y, settings) -> (z_next, u)``; default: hold the static command
         (:func:`~loader_model.simulation.controllers.hold_command_controller` with u0 as its
@@ -161,25 +164,14 @@ def simulate(
     SimulationError
         If the run leaves the finite numbers (naming the time and the last finite state).
     """
-    params = np.asarray(params, dtype=float).ravel()
-    if params.size != len(PLANT_PARAMETER_NAMES):
-        raise ValueError(f"params must have {len(PLANT_PARAMETER_NAMES)} values; got {params.size}")
-    x0, u0 = static_state(params)
-    if controller is None:  # hold the static command, given as the hold controller's setting
-        if len(settings):
-            raise ValueError("settings are for a controller; without one the pump holds u0")
-        controller, settings = hold_command_controller(), (u0,)
-    controller = check_controller(controller)
-    nz = controller.size1_in(0)
-    settings_vector = np.asarray(settings, dtype=float).ravel()
-    if settings_vector.size != controller.size1_in(2):
-        raise ValueError(
-            f"settings must have {controller.size1_in(2)} values for controller "
-            f"{controller.name()!r}; got {settings_vector.size}"
-        )
-    z0 = np.zeros(nz) if controller_state is None else np.asarray(controller_state, float).ravel()
-    if z0.size != nz:
-        raise ValueError(f"controller_state must have {nz} values; got {z0.size}")
+    scenario = as_scenario(params, controller, settings, controller_state)
+    params, x0, u0 = scenario.params, scenario.x0, scenario.u0
+    controller, settings_vector, z0 = (
+        scenario.controller,
+        scenario.settings,
+        scenario.controller_state,
+    )
+    nz = z0.size
     total_s = road.duration_s if duration_s is None else float(duration_s)
     count = int(np.floor(total_s / period_s + 1e-9))
     if count < 2:
@@ -249,8 +241,8 @@ def simulate(
     events = find_events(
         time_rows,
         columns_out,
-        stroke_m=_parameter(params, "stroke"),
-        max_displacement=_parameter(params, "V_p_max"),
+        stroke_m=scenario.plant.parameter("stroke"),
+        max_displacement=scenario.plant.parameter("V_p_max"),
         airborne_min_s=airborne_min_s,
     )
     metadata = {
