@@ -6,6 +6,7 @@ import loader_model
 
 project = "loader-model"
 author = "loader-model authors"
+copyright = "loader-model authors (MIT licence)"
 release = loader_model.__version__
 version = release
 
