@@ -10,7 +10,7 @@ import pytest
 EXAMPLES_DIR = Path(__file__).resolve().parents[1] / "docs" / "examples"
 EXAMPLES = sorted(EXAMPLES_DIR.glob("*.py"))
 # Examples that take longer than a few seconds run with `make test-slow`.
-SLOW: set[str] = set()
+SLOW = {"identify_leakage"}  # 7 s
 
 
 def _param(script: Path):
