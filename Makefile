@@ -7,11 +7,11 @@ STAMP := $(VENV)/.installed
 LOCK := requirements-lock.txt
 PIP_QUIET := --quiet --disable-pip-version-check
 
-.PHONY: setup lock regenerate calibrate gains lint test test-slow bench reproduce clean
+.PHONY: setup lock regenerate calibrate gains lint test test-slow bench reproduce docs clean
 
 $(STAMP): pyproject.toml $(LOCK)
 	$(PYTHON) -m venv $(VENV)
-	$(PY) -m pip install $(PIP_QUIET) -c $(LOCK) -e '.[derive,dev]'
+	$(PY) -m pip install $(PIP_QUIET) -c $(LOCK) -e '.[derive,dev,docs]'
 	touch $(STAMP)
 
 setup: $(STAMP)
@@ -20,7 +20,7 @@ setup: $(STAMP)
 lock:
 	rm -rf .lock-venv
 	$(PYTHON) -m venv .lock-venv
-	.lock-venv/bin/python -m pip install $(PIP_QUIET) '.[derive,dev]'
+	.lock-venv/bin/python -m pip install $(PIP_QUIET) '.[derive,dev,docs]'
 	{ echo "# Pinned set of every runtime, derive and test dependency, transitive ones included."; \
 	  echo "# Written by \`make lock\` (resolved from pyproject.toml with $$(.lock-venv/bin/python -V),"; \
 	  echo "# $$(uname -sm)); \`make setup\` installs with it as constraints. Do not edit by hand."; \
@@ -63,5 +63,9 @@ bench: setup
 reproduce: setup
 	$(VENV)/bin/loader-model reproduce
 
+## docs: the user guide and API reference as HTML in docs/_build/html (offline, warnings are errors)
+docs: setup
+	$(VENV)/bin/sphinx-build -b html -W --keep-going -q docs docs/_build/html
+
 clean:
-	rm -rf $(VENV) .lock-venv build dist *.egg-info .pytest_cache .ruff_cache
+	rm -rf docs/_build $(VENV) .lock-venv build dist *.egg-info .pytest_cache .ruff_cache

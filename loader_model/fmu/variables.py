@@ -3,19 +3,14 @@
 Real value references are laid out in one block, in this order, and the C wrapper stores every
 Real in one array indexed by its value reference:
 
-================  ===========================================  =====================
-block             names                                        causality
-================  ===========================================  =====================
-parameters        the plant parameters (order of                parameter (fixed)
-                  :data:`~loader_model.plant.plant_parameters.PLANT_PARAMETER_NAMES`,
-                  without the static tyre loads F_Ay0, F_By0,
-                  which the plant completes from the others)
-inputs            V_p_ref, then the road and disturbances        input
-                  (:data:`~loader_model.plant.plant.EXOGENOUS_NAMES`)
-states            ``x.<name>`` (:data:`~loader_model.plant.plant.STATE_NAMES`)   local
-derivatives       ``der(x.<name>)``                              local
-outputs           :data:`~loader_model.plant.plant.OUTPUT_NAMES`                 output
-================  ===========================================  =====================
+- parameters (causality parameter, fixed): the plant parameters, in the order of
+  :data:`~loader_model.plant.plant_parameters.PLANT_PARAMETER_NAMES`, without the static tyre
+  loads F_Ay0, F_By0, which the plant completes from the others;
+- inputs (input): V_p_ref, then the road and disturbances
+  (:data:`~loader_model.plant.plant.EXOGENOUS_NAMES`);
+- states (local): ``x.<name>`` (:data:`~loader_model.plant.plant.STATE_NAMES`);
+- derivatives (local): ``der(x.<name>)``;
+- outputs (output): :data:`~loader_model.plant.plant.OUTPUT_NAMES`.
 
 The one Boolean (value reference 0) is ``start_at_equilibrium``.
 """

@@ -247,7 +247,7 @@ def _check_magnitudes(name: str, header: list[str], data: np.ndarray, first_line
 
 
 def read_vibration_csv(path: str | Path) -> VibrationRecord:
-    """Read a CSV file with a header row: a ``time`` column in s and axis columns (see :data:`AXES`).
+    r"""Read a CSV file with a header row: a ``time`` column in s and axis columns (see :data:`AXES`).
 
     Lines starting with ``#`` and blank lines are skipped; the delimiter is a comma. The file
     must be UTF-8 text, with or without a byte-order mark, with ``\n`` or ``\r\n`` line
