@@ -71,7 +71,9 @@ def _refine(args: argparse.Namespace, start, loads, params):
     from loader_model.experiments.course_refinement import course_cost, refine_on_course
 
     print(f"Refining on the nonlinear paper course at {args.speed:g} km/h ({', '.join(loads)}):")
-    table3 = course_cost((2.75, 5.10, -4.0, -0.22), loads, args.speed, params)
+    from loader_model.control.comfort_design import TABLE3_GAIN
+
+    table3 = course_cost(tuple(TABLE3_GAIN.ravel()), loads, args.speed, params)
     result = refine_on_course(
         start,
         loads=loads,
@@ -127,7 +129,12 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
         raise ValueError(f"--speed {args.speed:g} with --method refine: allowed: 9 or 18 km/h")
     if args.evaluations < 1:
         raise ValueError(f"--evaluations {args.evaluations}: allowed: an integer >= 1")
-    from loader_model.control.comfort_design import TABLE3_GAIN, comfort_plants, evaluate_gain
+    from loader_model.control.comfort_design import (
+        TABLE3_GAIN,
+        TABLE3_PRINTED_GAIN,
+        comfort_plants,
+        evaluate_gain,
+    )
     from loader_model.control.comfort_plant import comfort_case
     from loader_model.control.gain_design import design_gains
 
@@ -140,8 +147,6 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
         params = {load: plant_parameter_vector(args.params, load) for load in ("empty", "full")}
     every = comfort_plants(("empty", "full"), args.road, args.speed, params)
     design = [p for p in every if p.name in loads]
-    table3 = TABLE3_GAIN
-    flipped = TABLE3_GAIN * np.array([[1.0, 1.0, 1.0, -1.0]])
     lqr = design_gains(design, "lqr").gains
     if args.method in ("optimise", "refine"):
         optimised = design_gains(design, "optimise", margin=args.margin, solver=args.solver)
@@ -154,7 +159,10 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
         f"{args.speed:g} km/h, designed for: {', '.join(loads)}; margin σ = {args.margin:g} rad/s"
     )
     print("  a_total [m/s²] (Eq. 50, k = 1, 1, 0.4) on both loads:")
-    rows = [("Table 3", table3), ("Table 3, k_φ = +0.22", flipped)]
+    rows = [
+        ("Table 3 (k_φ = +0.22)", TABLE3_GAIN),
+        ("Table 3 printed (−0.22)", TABLE3_PRINTED_GAIN),
+    ]
     rows += [(f"LQR ({name})", gain) for name, gain in lqr.items()]
     if designed is not None and args.method in ("optimise", "refine"):
         rows.append((label, designed))
@@ -206,7 +214,7 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
         from loader_model.control.comfort_figure import pitch_responses, plot_pitch_responses
 
         frequency = np.geomspace(0.3, 30.0, 400)
-        gains = {"Table 3 with k_φ = +0.22 (Table 3 unstable)": flipped, label: final}
+        gains = {"Table 3 with k_φ = +0.22": TABLE3_GAIN, label: final}
         curves = {
             load: pitch_responses(
                 comfort_case(load, None if params is None else params[load]), gains, frequency

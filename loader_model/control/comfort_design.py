@@ -47,6 +47,7 @@ if TYPE_CHECKING:
 __all__ = [
     "DEFAULT_MARGIN",
     "TABLE3_GAIN",
+    "TABLE3_PRINTED_GAIN",
     "GainEvaluation",
     "comfort_plants",
     "evaluate_gain",
@@ -54,8 +55,13 @@ __all__ = [
     "optimise_gain",
 ]
 
-#: K_fb of Table 3.
-TABLE3_GAIN = np.array([[2.75, 5.10, -4.0, -0.22]])
+#: K_fb of Table 3 as printed: k_φ = −0.22 leaves a real pole at about +0.05 rad/s on the model
+#: (errata 12), reported as an unstable variant.
+TABLE3_PRINTED_GAIN = np.array([[2.75, 5.10, -4.0, -0.22]])
+#: K_fb of Table 3 with k_φ's sign corrected (errata 12): the high-passed pressure loop makes the
+#: φ term an integral position loop, stable only for k_φ > 0; the paper's own design route
+#: (output-feedback LQR, Eq. 41-43) gives k_φ > 0 and Table 3's signs of the velocity gains.
+TABLE3_GAIN = np.array([[2.75, 5.10, -4.0, 0.22]])
 #: Required stability margin σ [rad/s]: below the road filter's fixed pole 2π n_1 v (0.17 rad/s
 #: at 9 km/h) and the slow boom pole, a 10 s time constant.
 DEFAULT_MARGIN = 0.1
@@ -152,7 +158,7 @@ def lqr_gain(plant: DesignPlant, effort: float = 1e-2) -> Any:
         plant.C_z.T @ plant.C_z,
         np.array([[effort]]),
         plant.B_w @ plant.B_w.T,
-        gain0=TABLE3_GAIN * np.array([[1.0, 1.0, 1.0, -1.0]]),
+        gain0=TABLE3_GAIN,
     )
 
 

@@ -1,7 +1,11 @@
 """The skyhook gains the report runs beside Table 3: output-feedback LQR and the ISO 2631
 comfort optimisation (issue 11), designed on the linearised plant for the paper's conditions.
 
-Both are designed on the detailed linear plant with an ISO 8608 class C road at 9 km/h (the
+Table 3 itself runs with k_φ = +0.22 (errata 12); the printed k_φ = −0.22 runs as the row
+``skyhook-printed``, a reported unstable variant (a real pole at about +0.05 rad/s: over the
+12-20 s of a course it grows by a factor of about 2, so it can be driven but not kept).
+
+The designed gains are designed on the detailed linear plant with an ISO 8608 class C road at 9 km/h (the
 paper's low speed), exactly as ``loader-model design`` does:
 
 - output-feedback LQR (Eq. 41, 42): Q = C_zᵀ C_z, R = 1e-2, X0 = B_w B_wᵀ, on the empty bucket
@@ -77,14 +81,20 @@ def refined_settings():
 def designed_gains() -> dict[str, DesignedGain]:
     """Table 3, LQR (empty bucket), comfort-optimised and course-refined gains with their linear
     evaluations, keyed ``"skyhook"`` and :data:`~loader_model.experiments.trials.DESIGNED_CONTROLLERS`."""
-    from loader_model.control.comfort_design import TABLE3_GAIN, comfort_plants, evaluate_gain
+    from loader_model.control.comfort_design import (
+        TABLE3_GAIN,
+        TABLE3_PRINTED_GAIN,
+        comfort_plants,
+        evaluate_gain,
+    )
     from loader_model.control.gain_design import design_gains
 
     plants = comfort_plants(("empty", "full"), DESIGN_ROAD_CLASS, DESIGN_SPEED_KMH)
     road = f"ISO 8608 class {DESIGN_ROAD_CLASS} at {DESIGN_SPEED_KMH:g} km/h"
     optimised = design_gains(plants, "optimise").details
     candidates = {
-        "skyhook": (TABLE3_GAIN, "Table 3 (paper, tuned online)"),
+        "skyhook": (TABLE3_GAIN, "Table 3 (paper, tuned online), k_φ = +0.22 (errata 12)"),
+        "skyhook-printed": (TABLE3_PRINTED_GAIN, "Table 3 as printed, k_φ = −0.22 (unstable)"),
         "skyhook-lqr": (
             design_gains(plants[:1], "lqr").gain,
             f"output-feedback LQR, empty bucket, Q = C_zᵀC_z, R = 1e-2, {road}",

@@ -78,9 +78,9 @@ def table6_rows(cells: list[Table6Cell]) -> Rows:
 
 
 def designed_rows(cells: list[Table6Cell]) -> Rows:
-    """Per condition: the skyhook's change of a_total with Table 3, LQR, optimised and
-    course-refined gains."""
-    names = ("skyhook", "skyhook-lqr", "skyhook-optimised", "skyhook-refined")
+    """Per condition: the skyhook's change of a_total with Table 3 (k_φ = +0.22), Table 3 as
+    printed (k_φ = −0.22, unstable), LQR, optimised and course-refined gains."""
+    names = ("skyhook", "skyhook-printed", "skyhook-lqr", "skyhook-optimised", "skyhook-refined")
     rows: Rows = [["speed", "load", *(f"{n} Δ [%] [95 % CI]" for n in names), "best"]]
     conditions = sorted({(c.speed_kmh, c.load) for c in cells})
     for speed, load in conditions:

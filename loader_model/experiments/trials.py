@@ -58,9 +58,15 @@ SPEEDS_KMH: tuple[float, ...] = (9.0, 18.0)
 LOADS: tuple[str, ...] = ("empty", "full")
 #: The four control conditions of section 5.3, baseline first.
 CONTROLLERS: tuple[str, ...] = ("baseline", "passive", "virtual-accumulator", "skyhook")
-#: The skyhook with designed gains (:mod:`~loader_model.experiments.designed_gains`), run as two
-#: more rows of the matrix; their trials carry the gains in :attr:`TrialSpec.k_fb`.
-DESIGNED_CONTROLLERS: tuple[str, ...] = ("skyhook-lqr", "skyhook-optimised", "skyhook-refined")
+#: The skyhook with other gains (:mod:`~loader_model.experiments.designed_gains`): Table 3 as
+#: printed (k_φ = −0.22, unstable: errata 12) and the designed ones, run as more rows of the
+#: matrix; their trials carry the gains in :attr:`TrialSpec.k_fb`.
+DESIGNED_CONTROLLERS: tuple[str, ...] = (
+    "skyhook-printed",
+    "skyhook-lqr",
+    "skyhook-optimised",
+    "skyhook-refined",
+)
 #: Standard deviation of the driven speed as a fraction of the nominal speed (assumed).
 SPEED_STD_FRACTION = 0.02
 #: Largest deviation of the driven speed from the nominal speed, as a fraction (assumed).

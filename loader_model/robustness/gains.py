@@ -81,7 +81,11 @@ def resolve_gains(study: Study) -> Gains:
     ValueError
         If a design fails (e.g. no sampled plant for the robust gains passes the checks).
     """
-    from loader_model.control.comfort_design import TABLE3_GAIN, comfort_plants
+    from loader_model.control.comfort_design import (
+        TABLE3_GAIN,
+        TABLE3_PRINTED_GAIN,
+        comfort_plants,
+    )
     from loader_model.control.gain_design import design_gains
 
     table3 = _row(TABLE3_GAIN)
@@ -97,6 +101,8 @@ def resolve_gains(study: Study) -> Gains:
     for name, spec in study.gains:
         if spec == "table3":
             gains[name] = dict.fromkeys(study.loads, table3)
+        elif spec == "table3-printed":
+            gains[name] = dict.fromkeys(study.loads, _row(TABLE3_PRINTED_GAIN))
         elif spec == "lqr":
             lqr = design_gains(nominal, "lqr").gains
             gains[name] = {load: _row(gain) for load, gain in lqr.items()}

@@ -37,7 +37,7 @@ SAMPLING_METHODS: tuple[str, ...] = ("latin-hypercube", "sobol")
 COMPARED_CONTROLLERS: tuple[str, ...] = ("passive", "virtual-accumulator", "skyhook")
 #: Computed skyhook gains: output-feedback LQR per load (Eq. 41, 42), ISO 2631 optimisation over
 #: both nominal loads, and the same optimisation over plants sampled from the study (robust).
-GAIN_METHODS: tuple[str, ...] = ("table3", "lqr", "optimised", "robust")
+GAIN_METHODS: tuple[str, ...] = ("table3", "table3-printed", "lqr", "optimised", "robust")
 _ROAD_KINDS = ("course", "iso8608")
 _ISO_CLASSES = tuple("ABCDEFGH")
 _SECTIONS = ("study", "road", "conditions", "controllers", "parameters")

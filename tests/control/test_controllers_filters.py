@@ -64,7 +64,7 @@ def test_default_settings_equal_the_loader_files_controller_section() -> None:
     settings, loader = default_settings(), default_loader().controller
     for name in ("k_fb", "tau", "k_p", "sample_rate", "linear_acceleration_norm", "angle_norm"):
         assert getattr(settings, name) == getattr(loader, name), name
-    assert settings.k_fb == (2.75, 5.10, -4.0, -0.22)  # Table 3
+    assert settings.k_fb == (2.75, 5.10, -4.0, 0.22)  # Table 3, k_φ sign corrected (errata 12)
     assert settings.source("highpass_corner").startswith("choice")
 
 

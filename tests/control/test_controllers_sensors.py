@@ -82,7 +82,7 @@ def test_skyhook_velocity_estimate_is_bounded_from_a_constant_gravity_reading() 
     np.testing.assert_allclose(history[-1, :3], expected, rtol=1e-9, atol=1e-13)
     assert np.max(np.abs(history[:, :3])) <= np.max(np.abs(expected)) * (1 + 1e-9)
     _, hold = static_state(params)
-    phi_term = 0.22 * y[3] / default_settings().angle_norm  # the boom stands 1.4 deg below φ0
+    phi_term = -0.22 * y[3] / default_settings().angle_norm  # the boom stands 1.4 deg below φ0
     k = 0.5 * 46e-6
     velocity_term = -(2.75 * expected[0] + 5.10 * expected[1])
     assert history[-1, 4] == pytest.approx(hold + k * (phi_term + velocity_term), rel=1e-6)

@@ -7,7 +7,7 @@ import pytest
 
 from loader_model.control.comfort_design import (
     DEFAULT_MARGIN,
-    TABLE3_GAIN,
+    TABLE3_PRINTED_GAIN,
     comfort_plants,
     evaluate_gain,
     optimise_gain,
@@ -16,9 +16,9 @@ from loader_model.experiments.course_refinement import course_cost, refine_on_co
 
 
 def test_an_unstable_start_is_refused_before_any_drive() -> None:
-    # Table 3's k_phi = -0.22 leaves a slow unstable pole on the linear plant (report, item 4)
+    # Table 3's printed k_phi = -0.22 leaves a slow unstable pole on the linear plant (report, item 4)
     with pytest.raises(ValueError, match="misses the stability margin"):
-        refine_on_course(TABLE3_GAIN, loads=("empty",), max_evaluations=3, progress=False)
+        refine_on_course(TABLE3_PRINTED_GAIN, loads=("empty",), max_evaluations=3, progress=False)
 
 
 @pytest.mark.slow

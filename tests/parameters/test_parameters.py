@@ -37,7 +37,12 @@ def test_shipped_files_load_and_match_the_paper() -> None:
     # errata 8: a full stroke in about 37 ms
     full_stroke_s = loader.pump.max_displacement / loader.pump.displacement_rate_limit
     assert full_stroke_s == pytest.approx(0.037, abs=1e-3)
-    assert loader.controller.k_fb == (2.75, 5.10, -4.0, -0.22)  # Table 3
+    assert loader.controller.k_fb == (
+        2.75,
+        5.10,
+        -4.0,
+        0.22,
+    )  # Table 3, k_φ sign corrected (errata 12)
     assert loader.controller.angle_norm == pytest.approx(math.radians(33.0), rel=1e-12)
     assert bucket_load("empty").mass == 340.0 and bucket_load("full").mass == 770.0
     assert bucket_load("empty").pressure_normalisation == 100e5
