@@ -5,6 +5,7 @@
 - :mod:`~loader_model.iso2631.filters`: causal discrete weighting filters for sampled signals.
 - :mod:`~loader_model.iso2631.metrics`: weighted r.m.s. (Eq. 49), total value (Eq. 50), crest
   factor, running r.m.s., MTVV, VDV, eVDV.
+- :mod:`~loader_model.iso2631.comfort`: Annex C.2.3's likely comfort reactions to a total value.
 - :mod:`~loader_model.iso2631.exposure`: daily exposure A(8), Directive 2002/44/EC values.
 - :mod:`~loader_model.iso2631.timeseries`: labelled multi-axis records and CSV input.
 - :mod:`~loader_model.iso2631.evaluation`: a whole record, per axis and in total.
@@ -13,6 +14,7 @@
 
 from __future__ import annotations
 
+from loader_model.iso2631.comfort import COMFORT_SCALE, comfort_reaction
 from loader_model.iso2631.evaluation import (
     COMFORT_K_FACTORS,
     DEFAULT_AXIS_WEIGHTINGS,
@@ -88,6 +90,7 @@ __all__ = [
     "A8_LIMIT_VALUE_M_S2",
     "AXES",
     "COMFORT_K_FACTORS",
+    "COMFORT_SCALE",
     "DEFAULT_AXIS_WEIGHTINGS",
     "HEALTH_K_FACTORS",
     "INITIAL_STATES",
@@ -118,6 +121,7 @@ __all__ = [
     "axis_unit",
     "check_axis_name",
     "check_weighting_name",
+    "comfort_reaction",
     "crest_factor",
     "daily_exposure_a8",
     "daily_vibration_dose_value",
