@@ -9,6 +9,8 @@ sampling design (Latin hypercube or Sobol, :mod:`~loader_model.robustness.sampli
 - ``loguniform``: ``low``, ``high`` (> 0), uniform in the logarithm;
 - ``normal``: ``mean``, ``std``, truncated to ``low``, ``high``;
 - ``triangular``: ``low``, ``mode``, ``high``.
+
+Each may carry ``source``, a one-line reason for its support (a datasheet, a paper, "estimate").
 """
 
 from __future__ import annotations
@@ -46,6 +48,8 @@ class Distribution:
         The normal's mean and standard deviation, the triangular's mode (NaN when unused).
     unit : str
         SI unit, equal to the parameter file's.
+    source : str
+        Where the support comes from (empty if the study gives none).
     """
 
     kind: str
@@ -55,6 +59,7 @@ class Distribution:
     mean: float = math.nan
     std: float = math.nan
     mode: float = math.nan
+    source: str = ""
 
     def ppf(self, u: np.ndarray) -> np.ndarray:
         """Values at probabilities ``u`` in [0, 1) (inverse CDF)."""
@@ -91,10 +96,14 @@ def parse_distribution(spec: Any, key: str, unit: str, allowed: Range) -> Distri
         raise ValueError(f"{key}.distribution = {kind!r}: allowed: {list(DISTRIBUTIONS)}")
     names = DISTRIBUTIONS[kind]
     for name in spec:
-        if name not in (*names, "distribution", "unit"):
+        if name not in (*names, "distribution", "unit", "source"):
+            allowed_keys = [*names, "unit", "source"]
             raise ValueError(
-                f"{key}.{name}: unknown key for a {kind} distribution; allowed: {[*names, 'unit']}"
+                f"{key}.{name}: unknown key for a {kind} distribution; allowed: {allowed_keys}"
             )
+    source = spec.get("source", "")
+    if not isinstance(source, str):
+        raise ValueError(f"{key}.source = {source!r}: allowed: a string")
     if spec.get("unit") != unit:
         raise ValueError(
             f"{key}.unit = {spec.get('unit')!r}: the parameter file's unit is {unit!r} "
@@ -133,4 +142,5 @@ def parse_distribution(spec: Any, key: str, unit: str, allowed: Range) -> Distri
         mean=values.get("mean", math.nan),
         std=values.get("std", math.nan),
         mode=values.get("mode", math.nan),
+        source=source,
     )

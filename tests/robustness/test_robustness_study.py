@@ -71,6 +71,8 @@ def test_example_study_is_valid_and_names_every_controller() -> None:
         (("duration_s = 3.0", "duration_s = 1.0"), "study.duration_s = 1.0: allowed"),
         (('"load.mass"', '"sensors.p_A.gain"'), "sensors.p_A.gain.unit = 'kg': .* unit is '-'"),
         (('"load.mass"', '"sensors.p_A.offst"'), "did you mean 'sensors.p_A.offset'"),
+        (('unit = "Pa"', 'unit = "Pa", source = 3'), r"bulk_modulus.source = 3: allowed: a string"),
+        (('unit = "Pa"', 'unit = "Pa", why = "x"'), r"bulk_modulus.why: unknown key .*'source'"),
     ],
 )
 def test_bad_study_files_name_key_value_and_what_is_allowed(change, message) -> None:
@@ -223,3 +225,10 @@ def test_report_counts_worse_runs_and_ranks_the_parameter_that_drives_them() -> 
     assert [r["sample"] for r in summary["worst"]] == [8, 7, 6]
     text = report_text(study, table, {"virtual-accumulator": {}})
     assert "probability of worse comfort: 0.444" in text and "1 × SimulationError" in text
+
+
+def test_a_distribution_carries_its_source() -> None:
+    text = TINY.replace('unit = "Pa"', 'unit = "Pa", source = "Table 5 and air entrainment"', 1)
+    distribution = dict(parse_study(text).parameters)["hydraulics.bulk_modulus"]
+    assert distribution.source == "Table 5 and air entrainment"
+    assert dict(parse_study(TINY).parameters)["hydraulics.bulk_modulus"].source == ""
