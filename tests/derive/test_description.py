@@ -60,11 +60,11 @@ def _broken(tmp_path: Path, old: str, new: str, text: str = SKID_STEER) -> Path:
         ('parent = "chassis"', 'parent = "chasis"', r"bodies\.boom\.parent: unknown parent body 'chasis'"),
         ('point = "B"', 'point = "Z"', r"axles\[1\]\.point: point 'Z' is on no body"),
         ('rod = "E"', 'rod = "D"', r"actuators\.lift: points 'C' and 'D' are both on body 'chassis'"),
-        ('[[axles]]\npoint = "B"\nlabel = "rear axle"\n', "", r"axles: 1 axle\(s\) given, a machine needs at least two"),
+        ('[[axles]]\npoint = "B"\nlabel = "rear axle"\n', "", r"axles: 1 axle\(s\) given, a machine needs at least two"),  # noqa: E501
         ('m_1 = { unit = "kg", ', "m_1 = { ", r"parameters\.m_1\.unit: missing unit"),
-        ('J_1 = { unit = "kg*m^2"', 'J_1 = { unit = "kg m^2"', r"parameters\.J_1\.unit: 'kg m\^2', expected 'kg\*m\^2'"),
+        ('J_1 = { unit = "kg*m^2"', 'J_1 = { unit = "kg m^2"', r"parameters\.J_1\.unit: 'kg m\^2', expected 'kg\*m\^2'"),  # noqa: E501
         ('mass = "m_2"', 'mas = "m_2"', r"bodies\.boom: unknown key 'mas'"),
-        ('[sensors.H]\naxes = ["x", "y"]', '[sensors.H]\naxes = ["x", "y"]\ncolour = "red"', r"sensors\.H: unknown key 'colour'"),
+        ('[sensors.H]\naxes = ["x", "y"]', '[sensors.H]\naxes = ["x", "y"]\ncolour = "red"', r"sensors\.H: unknown key 'colour'"),  # noqa: E501
         ('[sensors.S]', '[sensors.W]', r"sensors\.W: point 'W' is on no body"),
         ('at = "D"', 'at = "Y"', r"bodies\.boom\.at: point 'Y' is on no body"),
         ('g = { unit', 'gee = { unit', r"parameters: unknown key 'gee'"),
