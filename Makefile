@@ -28,9 +28,10 @@ lock:
 	mv $(LOCK).tmp $(LOCK)
 	rm -rf .lock-venv build
 
-## regenerate: derive the model with SymPy and rewrite generated/ (deterministic)
+## regenerate: derive every described machine (derive/machines/*.toml) with SymPy and rewrite
+## generated/ (deterministic); `make regenerate MACHINE=name` derives one
 regenerate: setup
-	$(PY) -m derive --output generated
+	$(PY) -m derive --output generated $(if $(MACHINE),--machine $(MACHINE))
 
 ## calibrate: fit the default loader to the paper's Table 1, rewrite its TOML, then regenerate
 calibrate: setup

@@ -33,7 +33,7 @@ import sympy as sp
 from derive.codegen import FunctionSpec, InputSpec, OutputSpec
 from derive.contact import contact_factor, unilateral, unilateral_potential
 from derive.mechanics import LoaderMechanics
-from derive.symbols import ANCHORS, COORDINATE_RATES, parameter_symbol
+from derive.symbols import parameter_symbol
 
 __all__ = ["mechanical_energy_spec"]
 
@@ -43,22 +43,29 @@ P = parameter_symbol
 def mechanical_energy_spec(mech: LoaderMechanics, inputs: tuple[InputSpec, ...]) -> FunctionSpec:
     """Specification of the generated ``mechanical_energy`` (module docstring).
 
-    ``inputs`` are (p, ṗ, ξ, road, road_rate, params) in the order of ``tyre_contact``.
+    ``inputs`` are (p, ṗ, ξ, road, road_rate, params) in the order of ``tyre_contact``. Machines
+    with internal spring-dampers (:mod:`derive.elements`) also get ``V_internal`` (their springs
+    with preloads, 0 at p = 0) and ``D_internal`` (their dampers).
     """
-    pd = sp.Matrix(COORDINATE_RATES)
+    sym = mech.symbols
+    machine = sym.machine
+    pd = sp.Matrix(sym.rates)
     kinetic = (pd.T * mech.mass_matrix * pd)[0, 0] / 2
-    gravity = P("g") * (
-        P("m_1") * mech.positions["H"][1] + P("m_2") * (mech.positions["G"][1] - P("G_y"))
-    )
+    root = machine.root
+    heights = P(root.mass) * mech.positions[root.centre_of_gravity][1]
+    for body in machine.bodies[1:]:
+        cog = body.centre_of_gravity
+        heights += P(body.mass) * (mech.positions[cog][1] - P(f"{cog}_y"))
+    gravity = P("g") * heights
     width = P("F_transition")
     stored = sp.S.Zero
     dissipated = sp.S.Zero
     elastic: list[sp.Expr] = []
     definitions = list(mech.contact_definitions)
-    for index, axle in enumerate("AB"):
+    for index, axle in enumerate(machine.axles):
         deflection, slip = mech.tyre_deflections[axle], mech.tyre_slips[axle]
         k_x, k_y, c_x = P(f"k_{axle}x"), P(f"k_{axle}y"), P(f"c_{axle}x")
-        stretch = deflection[0] - ANCHORS[index]
+        stretch = deflection[0] - sym.anchors[index]
         spring = P(f"F_{axle}y0") - k_y * deflection[1]
         clamped = sp.Symbol(f"F_e_{axle}", real=True)
         definitions.append((clamped, unilateral(spring, width)))
@@ -68,21 +75,43 @@ def mechanical_energy_spec(mech: LoaderMechanics, inputs: tuple[InputSpec, ...])
         dissipated += contact_factor(vertical, width) * c_x * slip[0] ** 2
         dissipated += k_x * stretch * mech.anchor_rates[index]
         elastic += [-k_x * stretch, clamped]
+    masses = [body.mass.replace("_", "") for body in machine.bodies]
+    cogs = [body.centre_of_gravity for body in machine.bodies]
+    v_g = f"{masses[0]} y_{cogs[0]}" + "".join(
+        f" + {m} (y_{c} − {c}_y)" for m, c in zip(masses[1:], cogs[1:], strict=True)
+    )
+    tyre_list = ", ".join(f"F_{a}x, F_{a}y" for a in machine.axles)
+    outputs = [
+        OutputSpec("T", sp.Matrix([kinetic]), "kinetic energy [J]"),
+        OutputSpec("V_gravity", sp.Matrix([gravity]), "gravity potential, 0 at p = 0 [J]"),
+        OutputSpec("V_tyre", sp.Matrix([stored]), "elastic energy of the tyres [J]"),
+        OutputSpec(
+            "F_elastic",
+            sp.Matrix(elastic),
+            f"({2 * len(machine.axles)},) elastic parts of {tyre_list} [N]",
+        ),
+        OutputSpec("D_tyre", sp.Matrix([dissipated]), "power dissipated in the tyres [W]"),
+    ]
+    if machine.elements:
+        outputs += [
+            OutputSpec(
+                "V_internal",
+                sp.Matrix([mech.elements.potential]),
+                "elastic energy of the internal springs with preloads, 0 at p = 0 [J]",
+            ),
+            OutputSpec(
+                "D_internal",
+                sp.Matrix([mech.elements.dissipation]),
+                "power dissipated in the internal dampers [W]",
+            ),
+        ]
     return FunctionSpec(
         "mechanical_energy",
         "Stored energy and tyre dissipation of the multibody model (derive/energy.py).",
-        "T = ½ ṗᵀ M ṗ, V_g = g (m1 y_H + m2 (y_G − G_y)), V_tyre: tyre springs with the clamp's\n"
+        f"T = ½ ṗᵀ M ṗ, V_g = g ({v_g}), V_tyre: tyre springs with the clamp's\n"
         "potential; F_elastic = −∂V_tyre/∂r_axle; D_tyre: dampers and sliding of the contact law.\n"
         "Road power F_tyre · ẇ + F_elastic · (ẇ_true − ẇ) = F_tyre · v_axle + dV_tyre/dt + D_tyre.",
         inputs,
-        (
-            OutputSpec("T", sp.Matrix([kinetic]), "kinetic energy [J]"),
-            OutputSpec("V_gravity", sp.Matrix([gravity]), "gravity potential, 0 at p = 0 [J]"),
-            OutputSpec("V_tyre", sp.Matrix([stored]), "elastic energy of the tyres [J]"),
-            OutputSpec(
-                "F_elastic", sp.Matrix(elastic), "(4,) elastic parts of F_Ax, F_Ay, F_Bx, F_By [N]"
-            ),
-            OutputSpec("D_tyre", sp.Matrix([dissipated]), "power dissipated in the tyres [W]"),
-        ),
+        tuple(outputs),
         definitions=tuple(definitions),
     )

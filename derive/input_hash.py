@@ -1,7 +1,7 @@
 """Hash of the derivation's inputs, recorded in every generated file.
 
-Kept free of SymPy so that a fast test can tell whether ``derive/`` changed since ``generated/``
-was last written, without running the derivation.
+Kept free of SymPy so that a fast test can tell whether ``derive/`` or a machine description
+changed since ``generated/`` was last written, without running the derivation.
 """
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ from __future__ import annotations
 import hashlib
 from pathlib import Path
 
-__all__ = ["DERIVE_DIR", "SYMPY_VERSION", "input_hash"]
+__all__ = ["DERIVE_DIR", "SYMPY_VERSION", "description_hash", "input_hash"]
 
 DERIVE_DIR = Path(__file__).resolve().parent
 
@@ -17,10 +17,19 @@ DERIVE_DIR = Path(__file__).resolve().parent
 SYMPY_VERSION = "1.14.0"
 
 
-def input_hash(derive_dir: Path = DERIVE_DIR) -> str:
-    """Return ``sha256:<hex>`` over the sources of ``derive/`` and the pinned SymPy version."""
+def description_hash(machine: str = "skid_steer", derive_dir: Path = DERIVE_DIR) -> str:
+    """``sha256:<hex>`` of the machine description ``derive/machines/<machine>.toml``."""
+    path = derive_dir / "machines" / f"{machine}.toml"
+    return "sha256:" + hashlib.sha256(path.read_bytes().replace(b"\r\n", b"\n")).hexdigest()
+
+
+def input_hash(machine: str = "skid_steer", derive_dir: Path = DERIVE_DIR) -> str:
+    """``sha256:<hex>`` over the sources of ``derive/`` (its code and the description schema),
+    the machine's description and the pinned SymPy version."""
     digest = hashlib.sha256(f"sympy=={SYMPY_VERSION}\n".encode())
-    for path in sorted(derive_dir.glob("*.py")):
+    sources = [*derive_dir.glob("*.py"), *derive_dir.glob("*.json")]
+    for path in sorted(sources):
         digest.update(path.name.encode() + b"\n")
         digest.update(path.read_bytes().replace(b"\r\n", b"\n"))
+    digest.update(f"machine {machine} {description_hash(machine, derive_dir)}\n".encode())
     return "sha256:" + digest.hexdigest()

@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 
 import loader_model_generated
+from derive.description import available_machines
 from derive.input_hash import input_hash
 
 GENERATED_DIR = Path(loader_model_generated.__file__).resolve().parent
@@ -32,18 +33,36 @@ def test_every_generated_file_carries_header_and_hash() -> None:
         assert head[3].startswith("# Total ops: "), path.name
 
 
-def test_regeneration_reproduces_generated_bytes(tmp_path: Path) -> None:
+def _machine_dir(machine: str) -> Path:
+    return GENERATED_DIR if machine == "skid_steer" else GENERATED_DIR / machine
+
+
+def test_every_described_machine_is_generated() -> None:
+    """Each derive/machines/*.toml has its package (the default machine: the top folder)."""
+    folders = {p.name for p in GENERATED_DIR.iterdir() if p.is_dir() and p.name != "__pycache__"}
+    assert folders == set(available_machines()) - {"skid_steer"}, HINT
+
+
+@pytest.mark.parametrize("machine", available_machines())
+def test_input_hash_of_every_machine_is_current(machine: str) -> None:
+    head = (_machine_dir(machine) / "__init__.py").read_text(encoding="utf-8").splitlines()[2]
+    assert head == f"# Input hash: {input_hash(machine)}", f"{machine}: {HINT}"
+
+
+@pytest.mark.parametrize("machine", available_machines())
+def test_regeneration_reproduces_generated_bytes(tmp_path: Path, machine: str) -> None:
     """The SymForce pattern: regenerate into a temporary folder and compare files and bytes."""
     pytest.importorskip("sympy")
     from derive.generate import generate
 
     fresh = tmp_path / "generated"
-    generate(fresh)
-    checked_in = {p.name for p in GENERATED_DIR.glob("*.py")} - {NUMERIC_MODELS}
+    generate(fresh, machine)
+    folder = _machine_dir(machine)
+    checked_in = {p.name for p in folder.glob("*.py")} - {NUMERIC_MODELS}
     regenerated = {p.name for p in fresh.glob("*.py")}
     assert checked_in == regenerated, f"file lists differ; {HINT}"
     for name in sorted(regenerated):
-        old = (GENERATED_DIR / name).read_text(encoding="utf-8")
+        old = (folder / name).read_text(encoding="utf-8")
         new = (fresh / name).read_text(encoding="utf-8")
         if old != new:
             diff = "".join(
@@ -76,7 +95,7 @@ def test_regeneration_is_deterministic_across_hash_seeds(tmp_path: Path) -> None
         root = Path(__file__).resolve().parents[2]
         command = [sys.executable, "-m", "derive", "--output", str(out)]
         subprocess.run(command, cwd=root, env=env, check=True, capture_output=True)
-        outputs.append({p.name: p.read_bytes() for p in sorted(out.glob("*.py"))})
+        outputs.append({str(p.relative_to(out)): p.read_bytes() for p in sorted(out.rglob("*.py"))})
     assert outputs[0] == outputs[1]
 
 
