@@ -29,9 +29,12 @@ lock:
 	rm -rf .lock-venv build
 
 ## regenerate: derive every described machine (derive/machines/*.toml) with SymPy and rewrite
-## generated/ (deterministic); `make regenerate MACHINE=name` derives one
+## generated/ (deterministic); `make regenerate MACHINE=name` derives one; the descriptions are
+## shipped with the runtime as loader_model/data/machines/<name>.machine.toml
 regenerate: setup
 	$(PY) -m derive --output generated $(if $(MACHINE),--machine $(MACHINE))
+	for f in derive/machines/*.toml; do \
+	  cp "$$f" "loader_model/data/machines/$$(basename "$$f" .toml).machine.toml"; done
 
 ## calibrate: fit the default loader to the paper's Table 1, rewrite its TOML, then regenerate
 calibrate: setup
