@@ -22,6 +22,7 @@ __all__ = [
     "area_ratio",
     "chamber_volumes_m3",
     "hydraulic_stiffness_n_per_m",
+    "oil_column_stiffness_n_per_m",
     "piston_position_m",
 ]
 
@@ -147,11 +148,16 @@ def hydraulic_stiffness_n_per_m(
     float
         k_eq in N/m along the cylinder axis.
     """
+    return oil_column_stiffness_n_per_m(cylinders, hydraulics.bulk_modulus, cylinder_length_m)
+
+
+def oil_column_stiffness_n_per_m(
+    cylinders: CylinderParameters, bulk_modulus_pa: float, cylinder_length_m: float
+) -> float:
+    """k_eq of :func:`hydraulic_stiffness_n_per_m` from the bulk modulus alone, in N/m (for a
+    machine whose parameter file gives only the hydraulics the spring needs)."""
     v_a, v_b = chamber_volumes_m3(cylinders, cylinder_length_m)
     alpha = area_ratio(cylinders)
     return (
-        cylinders.count
-        * hydraulics.bulk_modulus
-        * cylinders.piston_area**2
-        * (1.0 / v_a + alpha**2 / v_b)
+        cylinders.count * bulk_modulus_pa * cylinders.piston_area**2 * (1.0 / v_a + alpha**2 / v_b)
     )

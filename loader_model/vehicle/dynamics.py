@@ -1,22 +1,25 @@
-"""The generated loader model bound to one set of parameter values (paper section 2.1, Eq. 25-40).
+"""The generated model of a machine bound to one set of parameter values (section 2.1, Eq. 25-40).
 
-:class:`LoaderDynamics` validates its arguments, computes the static equilibrium (tyre loads and
-cylinder force that make p = 0 an equilibrium, DESIGN.md "Gravity") and evaluates the CasADi
-functions of ``loader_model_generated``. It never imports SymPy.
+:class:`LoaderDynamics` validates its arguments, computes the static equilibrium (tyre loads,
+cylinder force and locked-cylinder preloads that make p = 0 an equilibrium, DESIGN.md "Gravity")
+and evaluates the CasADi functions of the machine's generated package
+(:func:`loader_model.machines.machine`; default: the skid-steer, ``loader_model_generated``).
+Sizes and names come from the generated metadata. It never imports SymPy.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 import loader_model_generated as generated
 from loader_model.io.arrays import finite_scalar, finite_vector
+from loader_model.machines import DEFAULT_MACHINE, MachineInfo, machine
+from loader_model.parameters.machine_files import check_machine_model_values
 from loader_model.parameters.model_checks import check_model_parameters
+from loader_model.vehicle.linear_model import LinearModel
 
 __all__ = [
     "COORDINATE_NAMES",
@@ -28,73 +31,12 @@ __all__ = [
     "LoaderDynamics",
 ]
 
+#: Names of the default machine (the skid-steer); a model's own are ``model.machine.*_names``.
 PARAMETER_NAMES: tuple[str, ...] = generated.PARAMETER_NAMES
 COORDINATE_NAMES: tuple[str, ...] = generated.COORDINATE_NAMES
 STATE_NAMES: tuple[str, ...] = generated.STATE_NAMES
 EXOGENOUS_NAMES: tuple[str, ...] = generated.EXOGENOUS_NAMES
 OUTPUT_NAMES: tuple[str, ...] = generated.OUTPUT_NAMES
-_STATIC_LOADS = ("F_Ay0", "F_By0")
-
-
-@dataclass(frozen=True)
-class LinearModel:
-    """ẋ = A x + B u + E w, y = C x + D_u u + D_w w (Eq. 38-40) with named signals."""
-
-    A: np.ndarray
-    B: np.ndarray
-    E: np.ndarray
-    C: np.ndarray
-    D_u: np.ndarray
-    D_w: np.ndarray
-    state_names: tuple[str, ...] = STATE_NAMES
-    input_names: tuple[str, ...] = ("F_act",)
-    exogenous_names: tuple[str, ...] = EXOGENOUS_NAMES
-    output_names: tuple[str, ...] = OUTPUT_NAMES
-
-    def state_space(self, *, exogenous: bool = True, name: str = "loader") -> Any:
-        """Return a python-control ``StateSpace`` with named states, inputs and outputs.
-
-        Inputs are F_act [N] and, with ``exogenous``, the road and disturbance inputs w.
-        """
-        import control
-
-        inputs = list(self.input_names)
-        b_matrix, d_matrix = self.B, self.D_u
-        if exogenous:
-            inputs += list(self.exogenous_names)
-            b_matrix = np.hstack([self.B, self.E])
-            d_matrix = np.hstack([self.D_u, self.D_w])
-        return control.ss(
-            self.A,
-            b_matrix,
-            self.C,
-            d_matrix,
-            states=list(self.state_names),
-            inputs=inputs,
-            outputs=list(self.output_names),
-            name=name,
-        )
-
-    def save(self, path: str | Path) -> Path:
-        """Export A, B, E, C, D_u, D_w and the signal names to ``.npz`` or ``.mat`` (atomic)."""
-        from loader_model.io.export import save_arrays
-
-        return save_arrays(
-            path,
-            {
-                "A": self.A,
-                "B": self.B,
-                "E": self.E,
-                "C": self.C,
-                "D_u": self.D_u,
-                "D_w": self.D_w,
-                "state_names": list(self.state_names),
-                "input_names": list(self.input_names),
-                "exogenous_names": list(self.exogenous_names),
-                "output_names": list(self.output_names),
-            },
-        )
-
 
 #: Plausible magnitudes of the runtime arguments: 10 km of travel, half a turn of pitch, 1 km/s,
 #: 100 MN (a hundred times the weight of the heaviest machine of the class).
@@ -102,18 +44,6 @@ _MAX_POSITION_M = 1e4
 _MAX_ANGLE_RAD = np.pi
 _MAX_RATE = 1e3
 _MAX_FORCE_N = 1e8
-
-
-def _coordinates(p: Any) -> np.ndarray:
-    """p = (x_H, y_H, θ1, θ2), positions within 10 km and angles within half a turn."""
-    p = finite_vector("p", p, 4)
-    limits = np.array([_MAX_POSITION_M, _MAX_POSITION_M, _MAX_ANGLE_RAD, _MAX_ANGLE_RAD])
-    if np.any(np.abs(p) > limits):
-        raise ValueError(
-            f"p = {p.tolist()} is implausible; allowed: |x_H|, |y_H| <= {_MAX_POSITION_M:g} m "
-            f"and |theta_1|, |theta_2| <= pi rad"
-        )
-    return p
 
 
 def _finite(result: np.ndarray, args: list[np.ndarray]) -> np.ndarray:
@@ -129,21 +59,26 @@ def _dense(value: Any) -> np.ndarray:
 
 
 class LoaderDynamics:
-    """Generated equations of motion with bound parameter values.
+    """Generated equations of motion of a machine with bound parameter values.
 
     Parameters
     ----------
     parameter_values
-        A value for every name in :data:`PARAMETER_NAMES` (SI units, see
-        ``loader_model_generated.PARAMETER_UNITS``). The static tyre loads ``F_Ay0`` and
-        ``F_By0`` may be left out: with ``equilibrium=True`` they are computed so that p = 0 is a
-        static equilibrium (and replace given values).
+        A value for every parameter of the machine (:data:`PARAMETER_NAMES` for the skid-steer;
+        ``machine(name).parameter_names``; SI units, see the generated ``PARAMETER_UNITS``).
+        The static loads (``F_Ay0``, ``F_By0``, a locked cylinder's ``F_<name>0``) may be left
+        out: with ``equilibrium=True`` they are computed so that p = 0 is a static equilibrium
+        (and replace given values).
     equilibrium
-        Compute the static tyre loads from the static equilibrium.
+        Compute the static loads from the static equilibrium.
     check_ranges
-        Apply the plausibility ranges of the parameter files (default). ``False`` is for
-        analysis models outside the machines' range, e.g. a tyre removed (k = 0) to compare
-        with a tyre that lost contact; the values must still be finite real numbers.
+        Apply the plausibility ranges of the parameter files (default; for another machine the
+        ranges of its description). ``False`` is for analysis models outside the machines'
+        range, e.g. a tyre removed (k = 0) to compare with a tyre that lost contact; the values
+        must still be finite real numbers.
+    machine
+        A machine name or description file (:func:`loader_model.machines.machine`), or its
+        :class:`~loader_model.machines.MachineInfo`; default: the skid-steer.
 
     Raises
     ------
@@ -162,7 +97,12 @@ class LoaderDynamics:
         *,
         equilibrium: bool = True,
         check_ranges: bool = True,
+        machine: str | MachineInfo = DEFAULT_MACHINE,
     ) -> None:
+        info = machine if isinstance(machine, MachineInfo) else _machine(machine)
+        self.machine = info
+        """The registry entry of the machine (names, sizes, structure)."""
+        self._function = info.function
         if not isinstance(parameter_values, Mapping):
             raise ValueError(
                 f"parameter_values must be a mapping of parameter name to value; got "
@@ -171,98 +111,138 @@ class LoaderDynamics:
         for flag, value in (("equilibrium", equilibrium), ("check_ranges", check_ranges)):
             if not isinstance(value, bool):
                 raise ValueError(f"{flag} must be True or False; got {value!r}")
-        names = set(PARAMETER_NAMES)
-        unknown = sorted(set(parameter_values) - names, key=repr)
+        all_names = info.parameter_names
+        unknown = sorted(set(parameter_values) - set(all_names), key=repr)
         if unknown:
-            raise ValueError(
-                f"unknown model parameters {unknown}; allowed: {list(PARAMETER_NAMES)}"
-            )
-        optional = set(_STATIC_LOADS) if equilibrium else set()
-        missing = [n for n in PARAMETER_NAMES if n not in parameter_values and n not in optional]
+            raise ValueError(f"unknown model parameters {unknown}; allowed: {list(all_names)}")
+        optional = set(info.static_names) if equilibrium else set()
+        missing = [n for n in all_names if n not in parameter_values and n not in optional]
         if missing:
             raise ValueError(f"missing model parameters {missing}")
         values = {
             n: finite_scalar(f"model parameter {n}", parameter_values.get(n, 0.0))
-            for n in PARAMETER_NAMES
+            for n in all_names
         }
         given = {n: v for n, v in values.items() if n in parameter_values and n not in optional}
+        check = check_model_parameters if info.is_default else self._check_machine
         if check_ranges:
-            check_model_parameters(given)
-        vector = np.array([values[n] for n in PARAMETER_NAMES])
+            check(given)
+        vector = np.array([values[n] for n in all_names])
         # The generated complete_parameters holds the static equilibrium inside the graph, so a
         # CasADi graph of varied parameters stays at rest the same way (issue 7).
-        completed, force = generated.function("complete_parameters")(vector)
+        completed, force = self._function("complete_parameters")(vector)
         self.static_cylinder_force_N = float(force)
         """Cylinder force F_act0 that holds the boom at p = 0 [N]."""
         if equilibrium:
             vector = _dense(completed).ravel()
         if equilibrium and check_ranges and values["g"] != 0.0:  # no loads without gravity
-            check_model_parameters(
-                {name: float(vector[PARAMETER_NAMES.index(name)]) for name in _STATIC_LOADS}
-            )
+            tyre_loads = [f"F_{axle}y0" for axle in info.axles]
+            check({name: float(vector[all_names.index(name)]) for name in tyre_loads})
         self.parameters = vector
-        """Parameter vector in the order of :data:`PARAMETER_NAMES`."""
+        """Parameter vector in the order of the machine's parameter names."""
         self._check_mass_matrix()
 
+    def _check_machine(self, values: Mapping[str, float]) -> None:
+        check_machine_model_values(self.machine, values)
+
     @classmethod
-    def from_parameters(cls, loader: Any = None, load: Any = "empty") -> LoaderDynamics:
-        """Model of a loader parameter set with a bucket load.
+    def from_parameters(
+        cls, loader: Any = None, load: Any = "empty", machine: str = DEFAULT_MACHINE
+    ) -> LoaderDynamics:
+        """Model of a machine's parameter set with a bucket load.
 
         Parameters
         ----------
         loader
-            A :class:`loader_model.parameters.sets.LoaderParameters`, a path to its TOML file, or
-            None for the default loader.
+            For the skid-steer a :class:`loader_model.parameters.sets.LoaderParameters`, a path
+            to its TOML file, or None for the default loader; for another machine a
+            :class:`loader_model.parameters.machine_files.MachineParameters`, a path to its flat
+            parameter file, or None for its shipped values.
         load
-            A :class:`loader_model.parameters.sets.BucketLoad`, a path to its TOML file, or the name of
-            a shipped load case (``"empty"``: 340 kg, ``"full"``: 770 kg, paper section 5.3).
+            For the skid-steer a :class:`loader_model.parameters.sets.BucketLoad`, a path to its
+            TOML file, or the name of a shipped load case (``"empty"``: 340 kg, ``"full"``:
+            770 kg, paper section 5.3); for another machine a load case of its parameter file
+            (None: its ``[model]`` values as given).
+        machine
+            A machine name or description file (:func:`loader_model.machines.machine`).
         """
+        from loader_model.vehicle.statics import resolve_machine, resolve_machine_values
+
+        info = _machine(machine)
+        if not info.is_default:
+            return cls(resolve_machine_values(info.name, loader, load), machine=info)
         from loader_model.parameters import model_parameter_values
-        from loader_model.vehicle.statics import resolve_machine
 
         loader, load = resolve_machine(loader, load)
         return cls(model_parameter_values(loader, load))
 
     def _check_mass_matrix(self) -> None:
-        mass = self.mass_matrix(np.zeros(4))
+        mass = self.mass_matrix(np.zeros(self.machine.n_coordinates))
         eigenvalues = np.linalg.eigvalsh(0.5 * (mass + mass.T))
         if not np.all(eigenvalues > 0):
+            names = self.machine.parameter_names
+            masses = ", ".join(n for n in names if n.startswith("m_"))
+            inertias = ", ".join(n for n in names if n.startswith("J_"))
             raise ValueError(
                 "the mass matrix at p = 0 is not positive definite (eigenvalues "
-                f"{eigenvalues.tolist()}); check m_1, m_2 > 0, J_1, J_2 > 0"
+                f"{eigenvalues.tolist()}); check {masses} > 0, {inertias} > 0"
             )
 
     def parameter(self, name: str) -> float:
         """Value of the parameter ``name``."""
-        if name not in PARAMETER_NAMES:
-            raise ValueError(f"unknown model parameter {name!r}; allowed: {list(PARAMETER_NAMES)}")
-        return float(self.parameters[PARAMETER_NAMES.index(name)])
+        names = self.machine.parameter_names
+        if name not in names:
+            raise ValueError(f"unknown model parameter {name!r}; allowed: {list(names)}")
+        return float(self.parameters[names.index(name)])
+
+    def _coordinates(self, p: Any) -> np.ndarray:
+        """p, positions within 10 km and angles within half a turn."""
+        names = self.machine.coordinate_names
+        p = finite_vector("p", p, len(names))
+        limits = np.array([_MAX_POSITION_M] * 2 + [_MAX_ANGLE_RAD] * (len(names) - 2))
+        if np.any(np.abs(p) > limits):
+            angles = ", ".join(f"|{n}|" for n in names[2:])
+            raise ValueError(
+                f"p = {p.tolist()} is implausible; allowed: |{names[0]}|, |{names[1]}| <= "
+                f"{_MAX_POSITION_M:g} m and {angles} <= pi rad"
+            )
+        return p
+
+    def _rates(self, name: str, value: Any) -> np.ndarray:
+        return finite_vector(name, value, self.machine.n_coordinates, _MAX_RATE, "m/s or rad/s")
+
+    def _zeros(self, value: Any, names: tuple[str, ...]) -> Any:
+        return np.zeros(len(names)) if value is None else value
 
     def mass_matrix(self, p: Any) -> np.ndarray:
         """M(p), Eq. 25 (Eq. 32 at p = 0)."""
-        return _dense(generated.function("mass_matrix")(_coordinates(p), self.parameters))
+        return _dense(self._function("mass_matrix")(self._coordinates(p), self.parameters))
 
     def forward_dynamics(
         self,
         p: Any,
         pd: Any,
         force_N: float | None = None,
-        road_m: Any = (0.0, 0.0, 0.0, 0.0),
-        road_rate_m_s: Any = (0.0, 0.0, 0.0, 0.0),
+        road_m: Any = None,
+        road_rate_m_s: Any = None,
         disturbance: Any = (0.0, 0.0, 0.0),
-        anchor_m: Any = (0.0, 0.0),
+        anchor_m: Any = None,
     ) -> np.ndarray:
         """Accelerations p̈ (Eq. 25) with the tyre contact law (``derive/contact.py``).
 
         ``force_N`` is the total lift-cylinder force (default: the static force F_act0);
-        ``road_m`` = (w_Ax, w_Ay, w_Bx, w_By); ``disturbance`` = (F_dx, F_dy, M_d) at H;
-        ``anchor_m`` = (ξ_A, ξ_B), the slid distance of each tyre's contact point.
+        ``road_m`` = (w_Ax, w_Ay, w_Bx, w_By) (the machine's ``road_names``; default zero);
+        ``disturbance`` = (F_dx, F_dy, M_d) at H; ``anchor_m`` = (ξ_A, ξ_B), the slid distance
+        of each tyre's contact point (default zero).
         """
         force = self.static_cylinder_force_N if force_N is None else force_N
         args = self._arguments(p, pd, force, road_m, road_rate_m_s, disturbance)
         p, pd, force, road, road_rate, disturbance, params = args
-        anchor = finite_vector("anchor_m", anchor_m, 2, _MAX_POSITION_M, "m")
-        pdd, _ = generated.function("forward_dynamics")(
+        anchors = self.machine.anchor_names
+        anchor = finite_vector(
+            "anchor_m", self._zeros(anchor_m, anchors), len(anchors), _MAX_POSITION_M, "m"
+        )
+        pdd, _ = self._function("forward_dynamics")(
             p, pd, anchor, force, road, road_rate, disturbance, params
         )
         return _finite(_dense(pdd).ravel(), args)
@@ -270,41 +250,52 @@ class LoaderDynamics:
     def tyre_contact(
         self,
         p: Any,
-        pd: Any = (0.0, 0.0, 0.0, 0.0),
-        anchor_m: Any = (0.0, 0.0),
-        road_m: Any = (0.0, 0.0, 0.0, 0.0),
-        road_rate_m_s: Any = (0.0, 0.0, 0.0, 0.0),
+        pd: Any = None,
+        anchor_m: Any = None,
+        road_m: Any = None,
+        road_rate_m_s: Any = None,
     ) -> dict[str, np.ndarray]:
         """Road forces on the axles ``F_tyre`` = (F_Ax, F_Ay, F_Bx, F_By) [N] (world frame), their
         generalised forces ``Q_tyre`` and the anchor rates ``anchor_rate`` [m/s]."""
-        values = generated.function("tyre_contact")(
-            _coordinates(p),
-            finite_vector("pd", pd, 4, _MAX_RATE, "m/s or rad/s"),
-            finite_vector("anchor_m", anchor_m, 2, _MAX_POSITION_M, "m"),
-            finite_vector("road_m", road_m, 4, _MAX_POSITION_M, "m"),
-            finite_vector("road_rate_m_s", road_rate_m_s, 4, _MAX_RATE, "m/s"),
+        info = self.machine
+        n_road, n_anchor = len(info.road_names), len(info.anchor_names)
+        values = self._function("tyre_contact")(
+            self._coordinates(p),
+            self._rates("pd", self._zeros(pd, info.coordinate_names)),
+            finite_vector(
+                "anchor_m", self._zeros(anchor_m, info.anchor_names), n_anchor, _MAX_POSITION_M, "m"
+            ),
+            finite_vector(
+                "road_m", self._zeros(road_m, info.road_names), n_road, _MAX_POSITION_M, "m"
+            ),
+            finite_vector(
+                "road_rate_m_s", self._zeros(road_rate_m_s, info.road_names), n_road, _MAX_RATE,
+                "m/s",
+            ),
             self.parameters,
-        )
+        )  # fmt: skip
         names = ("F_tyre", "Q_tyre", "anchor_rate")
         return {name: _dense(v).ravel() for name, v in zip(names, values, strict=True)}
 
     def specific_forces(self, p: Any, pd: Any, pdd: Any) -> dict[str, np.ndarray]:
-        """What chassis-fixed accelerometers at H, N and S read: R(θ1)ᵀ (a + g ŷ) [m/s²]."""
-        values = generated.function("specific_forces")(
-            _coordinates(p),
-            finite_vector("pd", pd, 4, _MAX_RATE, "m/s or rad/s"),
-            finite_vector("pdd", pdd, 4),
+        """What chassis-fixed accelerometers at the sensor points (H, N, S) read:
+        R(θ1)ᵀ (a + g ŷ) [m/s²]."""
+        values = self._function("specific_forces")(
+            self._coordinates(p),
+            self._rates("pd", pd),
+            finite_vector("pdd", pdd, self.machine.n_coordinates),
             self.parameters,
         )
-        return {k: _dense(v).ravel() for k, v in zip("HNS", values, strict=True)}
+        points = tuple(self.machine.sensor_points)
+        return {k: _dense(v).ravel() for k, v in zip(points, values, strict=True)}
 
     def linearise(
         self,
-        p: Any = (0.0, 0.0, 0.0, 0.0),
-        pd: Any = (0.0, 0.0, 0.0, 0.0),
+        p: Any = None,
+        pd: Any = None,
         force_N: float | None = None,
-        road_m: Any = (0.0, 0.0, 0.0, 0.0),
-        road_rate_m_s: Any = (0.0, 0.0, 0.0, 0.0),
+        road_m: Any = None,
+        road_rate_m_s: Any = None,
         disturbance: Any = (0.0, 0.0, 0.0),
     ) -> LinearModel:
         """Linear model (Eq. 38-40) at an operating point; default: the static equilibrium.
@@ -312,33 +303,49 @@ class LoaderDynamics:
         Uses the paper's linear tyre law (Eq. 1-4), i.e. both tyres in contact.
         """
         force = self.static_cylinder_force_N if force_N is None else force_N
+        coordinates = self.machine.coordinate_names
+        p, pd = self._zeros(p, coordinates), self._zeros(pd, coordinates)
         args = self._arguments(p, pd, force, road_m, road_rate_m_s, disturbance)
         a, b, e, c, d_u, d_w, _ = (
-            _finite(_dense(m), args) for m in generated.function("linearisation")(*args)
+            _finite(_dense(m), args) for m in self._function("linearisation")(*args)
         )
-        return LinearModel(A=a, B=b, E=e, C=c, D_u=d_u, D_w=d_w)
+        info = self.machine
+        return LinearModel(
+            A=a, B=b, E=e, C=c, D_u=d_u, D_w=d_w, state_names=info.state_names,
+            exogenous_names=info.exogenous_names, output_names=info.output_names,
+        )  # fmt: skip
 
-    def cylinder_kinematics(self, p: Any, pd: Any = (0.0, 0.0, 0.0, 0.0)) -> dict[str, float]:
-        """x_cyl [m], ẋ_cyl [m/s], dx_cyl/dφ [m/rad] (Eq. 35) and γ [rad] (Eq. 15-16)."""
-        p, pd = _coordinates(p), finite_vector("pd", pd, 4, _MAX_RATE, "m/s or rad/s")
-        values = generated.function("cylinder_kinematics")(p, pd, self.parameters)
+    def cylinder_kinematics(self, p: Any, pd: Any = None) -> dict[str, float]:
+        """Of the driven cylinder: x_cyl [m], ẋ_cyl [m/s], dx_cyl/dφ [m/rad] (Eq. 35) and γ
+        [rad] (Eq. 15-16)."""
+        pd = self._zeros(pd, self.machine.coordinate_names)
+        p, pd = self._coordinates(p), self._rates("pd", pd)
+        values = self._function("cylinder_kinematics")(p, pd, self.parameters)
         names = ("x_cyl", "xd_cyl", "dx_cyl_dphi", "gamma")
         return {name: float(value) for name, value in zip(names, values, strict=True)}
 
     def point_positions(self, p: Any) -> dict[str, np.ndarray]:
-        """World positions [m] of the points A, B, C, D, E, G, H, N, S."""
-        values = generated.function("point_positions")(_coordinates(p), self.parameters)
-        return {f"{k}": _dense(v).ravel() for k, v in zip("ABCDEGHNS", values, strict=True)}
+        """World positions [m] of the machine's points (A, B, C, D, E, G, H, N, S, ...)."""
+        values = self._function("point_positions")(self._coordinates(p), self.parameters)
+        points = self.machine.point_names
+        return {f"{k}": _dense(v).ravel() for k, v in zip(points, values, strict=True)}
 
     def _arguments(
         self, p: Any, pd: Any, force: Any, road: Any, road_rate: Any, disturbance: Any
     ) -> list[np.ndarray]:
+        roads = self.machine.road_names
         return [
-            _coordinates(p),
-            finite_vector("pd", pd, 4, _MAX_RATE, "m/s or rad/s"),
+            self._coordinates(p),
+            self._rates("pd", pd),
             finite_vector("force_N", force, 1, _MAX_FORCE_N, "N"),
-            finite_vector("road_m", road, 4, _MAX_POSITION_M, "m"),
-            finite_vector("road_rate_m_s", road_rate, 4, _MAX_RATE, "m/s"),
+            finite_vector("road_m", self._zeros(road, roads), len(roads), _MAX_POSITION_M, "m"),
+            finite_vector(
+                "road_rate_m_s", self._zeros(road_rate, roads), len(roads), _MAX_RATE, "m/s"
+            ),
             finite_vector("disturbance", disturbance, 3, _MAX_FORCE_N, "N or N m"),
             self.parameters,
         ]
+
+
+def _machine(source: Any) -> MachineInfo:
+    return machine(source)

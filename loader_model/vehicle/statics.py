@@ -5,7 +5,10 @@ The static tyre loads and the lift-cylinder force come from the generated ``comp
 :func:`check_combination` refuses a combination that the model cannot hold: an axle that lifts
 off (the machine tips), a cylinder that would pull or exceed :data:`MAX_STATIC_PRESSURE_PA`, an
 accumulator precharge at or above the static pressure. :func:`resolve_machine` is the one way
-from files or objects to a loader and a load that stand together.
+from files or objects to a loader and a load that stand together; for another described machine
+(:mod:`loader_model.machines`) :func:`machine_static_equilibrium` and
+:func:`resolve_machine_values` do the same with its flat parameter file, and also give the
+preload of each locked cylinder (``F_<name>0``, e.g. the wheel loader's tilt cylinder).
 """
 
 from __future__ import annotations
@@ -13,7 +16,13 @@ from __future__ import annotations
 from pathlib import Path
 
 import loader_model_generated as generated
-from loader_model.parameters.checks import check_distinct
+from loader_model.machines import machine
+from loader_model.parameters.checks import END_STOP_MARGIN_M, check_distinct
+from loader_model.parameters.machine_files import (
+    MachineParameters,
+    machine_model_values,
+    resolve_machine_parameters,
+)
 from loader_model.parameters.schema import BucketLoad, LoaderParameters
 from loader_model.parameters.sets import (
     combine_bodies,
@@ -22,7 +31,14 @@ from loader_model.parameters.sets import (
 )
 from loader_model.vehicle.cylinder import static_piston_pressure
 
-__all__ = ["MAX_STATIC_PRESSURE_PA", "check_combination", "resolve_machine", "static_equilibrium"]
+__all__ = [
+    "MAX_STATIC_PRESSURE_PA",
+    "check_combination",
+    "machine_static_equilibrium",
+    "resolve_machine",
+    "resolve_machine_values",
+    "static_equilibrium",
+]
 
 #: Largest static piston-side pressure, Pa (500 bar, above the relief setting of mobile hydraulics).
 MAX_STATIC_PRESSURE_PA = 5e7
@@ -131,3 +147,78 @@ def resolve_machine(
     loader, load = resolve_loader_and_load(loader, load)
     check_combination(loader, load)
     return loader, load
+
+
+def machine_static_equilibrium(
+    name: str, params: MachineParameters, load: str | None = None
+) -> dict[str, float]:
+    """Static loads of a described machine at p = 0 with the bucket load case ``load``.
+
+    Returns
+    -------
+    dict
+        Every static load of the machine (``F_Ay0``, ``F_By0``, each locked cylinder's preload
+        ``F_<name>0``; N, tyre loads positive in compression, a cylinder's positive pushing),
+        ``F_act0`` (N), ``x_cyl0`` (m, the driven cylinder's pin-to-pin length) and ``p_A0``
+        (Pa gauge, rod side at the charge pressure).
+    """
+    info = machine(name)
+    values = machine_model_values(params, load)
+    completed, force = info.function("complete_parameters")(
+        [values[n] for n in info.parameter_names]
+    )
+    zeros = [0.0] * info.n_coordinates
+    x_cyl = float(info.function("cylinder_kinematics")(zeros, zeros, completed)[0])
+    cyl = params.cylinders
+    pressure = static_piston_pressure(
+        float(force),
+        cyl.count,
+        cyl.piston_diameter,
+        cyl.rod_diameter,
+        params.hydraulics["charge_pressure"],
+    )
+    names = info.parameter_names
+    loads = {n: float(completed[names.index(n)]) for n in info.static_names}
+    return loads | {"F_act0": float(force), "x_cyl0": x_cyl, "p_A0": float(pressure)}
+
+
+def resolve_machine_values(
+    name: str, params: MachineParameters | str | Path | None = None, load: str | None = None
+) -> dict[str, float]:
+    """Model values of a described machine whose parameters and load stand together at rest.
+
+    Raises
+    ------
+    ValueError
+        If the parameter file is invalid, the load case unknown, an axle lifts off, the lift
+        cylinder would pull or hold more than :data:`MAX_STATIC_PRESSURE_PA`, or its pin-to-pin
+        length at p = 0 is not within the stroke (away from the end stops).
+    """
+    params = resolve_machine_parameters(name, params)
+    statics = machine_static_equilibrium(name, params, load)
+    where = f"machine {name!r} ({params.origin}) with load {load or 'as in [model]'}"
+    axles = machine(name).axles
+    for axle in axles:
+        key = f"F_{axle}y0"
+        if not statics[key] > 0.0:
+            raise ValueError(
+                f"{where}: the static load of axle {axle} is {statics[key]:.4g} N; allowed: > 0 "
+                "(the machine must stand on every axle; check the masses, centres of gravity "
+                f"and the axle points {', '.join(axles)})"
+            )
+    if not (statics["F_act0"] > 0.0 and statics["p_A0"] <= MAX_STATIC_PRESSURE_PA):
+        raise ValueError(
+            f"{where}: the static lift-cylinder force is {statics['F_act0']:.4g} N, piston "
+            f"pressure {statics['p_A0'] / 1e5:.4g} bar; allowed: a pushing force with at most "
+            f"{MAX_STATIC_PRESSURE_PA / 1e5:g} bar (check [cylinders] and the boom's values)"
+        )
+    cyl = params.cylinders
+    position = statics["x_cyl0"] - cyl.retracted_length
+    if not END_STOP_MARGIN_M <= position <= cyl.stroke - END_STOP_MARGIN_M:
+        raise ValueError(
+            f"{where}: the lift cylinder's length at p = 0 is {statics['x_cyl0']:.4g} m, piston "
+            f"position {position:.4g} m; allowed: within the stroke [0, {cyl.stroke:g}] m, "
+            f"{END_STOP_MARGIN_M:g} m from either end stop (check [cylinders] retracted_length "
+            "and stroke, and the cylinder points)"
+        )
+    return machine_model_values(params, load)

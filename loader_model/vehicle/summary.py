@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from loader_model.vehicle.dynamics import COORDINATE_NAMES, LoaderDynamics
+from loader_model.vehicle.dynamics import LoaderDynamics
 
 __all__ = ["format_matrix", "model_summary"]
 
@@ -21,26 +21,29 @@ def format_matrix(matrix: np.ndarray, rows: tuple[str, ...], columns: tuple[str,
 
 def model_summary(model: LoaderDynamics) -> str:
     """Static equilibrium, M and K at p = 0, and the damped modes of the linear model (Eq. 38)."""
-    mass = model.mass_matrix(np.zeros(4))
+    info = model.machine
+    names, zeros = info.coordinate_names, np.zeros(info.n_coordinates)
+    mass = model.mass_matrix(zeros)
     linear = model.linearise()
-    accelerations, positions = [1, 3, 5, 7], [0, 2, 4, 6]
+    accelerations = [info.state_names.index(n) for n in info.rate_names]
+    positions = [info.state_names.index(n) for n in names]
     stiffness = -mass @ linear.A[np.ix_(accelerations, positions)]
-    cylinder = model.cylinder_kinematics(np.zeros(4))
+    cylinder = model.cylinder_kinematics(zeros)
     eigenvalues = np.linalg.eigvals(linear.A)
     oscillating = sorted((ev for ev in eigenvalues if ev.imag > 1e-9), key=lambda ev: -abs(ev))
     lines = [
         "Static equilibrium (p = 0)",
-        f"  front tyre load F_Ay0   {model.parameter('F_Ay0'):12.1f} N",
-        f"  rear tyre load  F_By0   {model.parameter('F_By0'):12.1f} N",
+        *_static_loads(model),
         f"  cylinder force  F_act0  {model.static_cylinder_force_N:12.1f} N",
         f"  cylinder length x_cyl   {cylinder['x_cyl']:12.4f} m",
         f"  lever dx_cyl/dphi       {cylinder['dx_cyl_dphi']:12.4f} m/rad  (Eq. 35)",
         "",
         "Mass matrix M (Eq. 32)",
-        format_matrix(mass, COORDINATE_NAMES, COORDINATE_NAMES),
+        format_matrix(mass, names, names),
         "",
-        "Stiffness K of the tyres and gravity, cylinder force held constant (Eq. 33-34)",
-        format_matrix(stiffness, COORDINATE_NAMES, COORDINATE_NAMES),
+        "Stiffness K of the tyres and gravity, cylinder force held constant (Eq. 33-34)"
+        + (", locked cylinders as springs" if info.locked_cylinders else ""),
+        format_matrix(stiffness, names, names),
         "",
         "Modes of the linear model with tyre damping, cylinder force held constant (Eq. 38)",
         "  frequency [Hz]   damping ratio [-]",
@@ -48,3 +51,14 @@ def model_summary(model: LoaderDynamics) -> str:
     for ev in oscillating:
         lines.append(f"  {abs(ev) / (2 * np.pi):14.2f}   {-ev.real / abs(ev):17.3f}")
     return "\n".join(lines)
+
+
+def _static_loads(model: LoaderDynamics) -> list[str]:
+    """The static tyre loads (front, rear, ...) and locked-cylinder preloads of the model."""
+    info = model.machine
+    labels = {"F_Ay0": "front tyre load F_Ay0", "F_By0": "rear tyre load  F_By0"}
+    lines = []
+    for name in info.static_names:
+        label = labels.get(name, f"static load {name}")
+        lines.append(f"  {label:<24}{model.parameter(name):12.1f} N")
+    return lines
