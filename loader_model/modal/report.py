@@ -5,7 +5,7 @@ from __future__ import annotations
 from loader_model.modal.modes import TABLE_1, ModalResult, compare_with_table_1
 from loader_model.modal.undamped import UndampedMatrices
 
-__all__ = ["format_modes"]
+__all__ = ["format_machine_modes", "format_modes"]
 
 _COORDINATES = ("x_H [m]", "y_H [m]", "θ1 [rad]", "θ2 [rad]")
 
@@ -55,3 +55,41 @@ def format_modes(title: str, matrices: UndampedMatrices, result: ModalResult) ->
         f"Within 1 % and MAC >= 0.99 for every mode (M·φ reading): {momentum.meets(1.0, 0.99)}",
     ]
     return "\n".join(lines)
+
+
+def format_machine_modes(title: str, matrices: UndampedMatrices, result: ModalResult) -> str:
+    """Frequencies, momentum shapes M·φ and displacement shapes φ of a machine without a paper
+    reference (the layout of :func:`format_modes` without the paper's columns)."""
+    names = matrices.coordinate_names
+    labels = [f"{n} [{'m' if n[0] in 'xy' else 'rad'}]" for n in names]
+    count = result.frequencies_hz.size
+    header = f"{'':14}" + "".join(f"{f'mode {k + 1}':>10}" for k in range(count))
+
+    def rows(shapes) -> list[str]:
+        return [
+            f"{label:<14}" + "".join(f"{shapes[i, k]:10.2f}" for k in range(count))
+            for i, label in enumerate(labels)
+        ]
+
+    return "\n".join(
+        [
+            title,
+            "Undamped modes (Eq. 27-29): tyres, gravity, locked cylinders as springs, and the lift "
+            "cylinders as a hydraulic spring",
+            f"k_eq = {matrices.hydraulic_stiffness_n_per_m:.3e} N/m (Eq. 28 with the area ratio), "
+            f"dx_cyl/dφ = {matrices.cylinder_lever_m_per_rad:.4f} m/rad (Eq. 35).",
+            "",
+            header,
+            f"{'f [Hz]':<14}" + "".join(f"{f:10.2f}" for f in result.frequencies_hz),
+            "",
+            "Momentum shapes M·φ (the reading of the paper's Table 1, DESIGN.md errata 7)",
+            header,
+            *rows(result.momentum_shapes),
+            "",
+            "Displacement shapes φ",
+            header,
+            *rows(result.displacement_shapes),
+            "",
+            "No paper reference for this machine (Table 1 is the skid-steer's).",
+        ]
+    )
