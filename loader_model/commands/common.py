@@ -8,15 +8,17 @@ from typing import Any
 __all__ = ["add_model_arguments", "machine_from_arguments", "model_from_arguments"]
 
 
-def add_model_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add ``--machine NAME|FILE``, ``--params FILE`` and ``--load empty|full|FILE``."""
-    parser.add_argument(
-        "--machine",
-        metavar="NAME|FILE",
-        default="skid_steer",
-        help="a generated machine (skid_steer, compact_wheel_loader, ...) or its description "
-        "file (TOML); default: skid_steer",
-    )
+def add_model_arguments(parser: argparse.ArgumentParser, *, machine: bool = False) -> None:
+    """Add ``--params FILE`` and ``--load empty|full|FILE``, and with ``machine``
+    ``--machine NAME|FILE`` (the commands whose layers take any described machine)."""
+    if machine:
+        parser.add_argument(
+            "--machine",
+            metavar="NAME|FILE",
+            default="skid_steer",
+            help="a generated machine (skid_steer, compact_wheel_loader, ...) or its description "
+            "file (TOML); default: skid_steer",
+        )
     parser.add_argument(
         "--params",
         metavar="FILE",
@@ -37,7 +39,7 @@ def machine_from_arguments(args: argparse.Namespace) -> Any:
     """The :class:`loader_model.machines.MachineInfo` of ``--machine`` (ValueError if unknown)."""
     from loader_model.machines import machine
 
-    return machine(args.machine)
+    return machine(getattr(args, "machine", "skid_steer"))
 
 
 def model_from_arguments(args: argparse.Namespace) -> Any:

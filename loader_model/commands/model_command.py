@@ -10,7 +10,7 @@ HELP = "print the model at the static equilibrium and export its linear model"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    add_model_arguments(parser)
+    add_model_arguments(parser, machine=True)
     parser.add_argument(
         "--export",
         metavar="FILE",

@@ -10,7 +10,7 @@ HELP = "undamped modes of a loader side by side with the paper's Table 1"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    add_model_arguments(parser)
+    add_model_arguments(parser, machine=True)
     parser.add_argument(
         "--no-gravity",
         action="store_true",
