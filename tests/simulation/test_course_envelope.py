@@ -92,3 +92,17 @@ def test_trials_draw_the_same_whatever_the_envelope():
     assert [dataclasses.replace(spec, envelope="rigid") for spec in cam] == rigid
     with pytest.raises(ValueError, match="envelope must be 'rigid' or 'tandem-cam'; got 'soft'"):
         trial_specs(0, 2, envelope="soft")
+
+
+def test_plot_envelopes_writes_a_figure(tmp_path):
+    from loader_model.simulation import single_board
+    from loader_model.simulation.envelope_plot import plot_envelopes
+
+    board = single_board(height_m=0.04, width_m=0.14, position_m=0.0)
+    cams = {"front, empty": TandemCam.from_deflection(0.42, 0.0073)}
+    path = plot_envelopes(tmp_path / "board.png", board, cams, distance_range_m=(-0.5, 0.6))
+    assert path.stat().st_size > 10_000
+    with pytest.raises(ValueError, match=r"\.png, \.pdf or \.svg"):
+        plot_envelopes(tmp_path / "board.jpg", board, cams, distance_range_m=(-0.5, 0.6))
+    with pytest.raises(ValueError, match="low < high"):
+        plot_envelopes(tmp_path / "board.png", board, cams, distance_range_m=(0.6, -0.5))
