@@ -4,7 +4,9 @@
 - :mod:`~loader_model.simulation.envelope`: exact rigid-wheel enveloping filter (effective height
   and slope under an axle) and the horizontal road input it implies.
 - :mod:`~loader_model.simulation.tandem_cam`: Schmeitz's tandem elliptical cam, the default road
-  of a tyre that envelops obstacles shorter than its contact patch.
+  of a tyre that envelops obstacles shorter than its contact patch (one cam's exact height:
+  :mod:`~loader_model.simulation.cam_envelope`; figure: :mod:`~loader_model.simulation.
+  envelope_plot`).
 - :mod:`~loader_model.simulation.iso8608`: ISO 8608 random roads by class from a seed, PSD check.
 - :mod:`~loader_model.simulation.road_csv`: profiles from and to CSV files with units.
 - :mod:`~loader_model.simulation.travel`: the plant's road input w(t), ẇ(t) per axle as a table.

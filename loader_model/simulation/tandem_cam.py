@@ -33,10 +33,7 @@ road input keeps the effective-plane law F_x = −F_y tan β with this tan β
 the two cams' slopes, which differs from tan β on a short obstacle. Effective rolling radius and
 curvature (Pacejka's third and fourth inputs) are left out.
 
-Computation (exact, no grid): g is concave for c_e ≥ 1, so on each linear segment of slope m the
-bracket is concave in u; its maximum is at a vertex, or at the tangent point u* where
-m = −b_e g'(u*): with q = |m| a_e / b_e and r = q^{c_e/(c_e − 1)}, |u*| = a_e (r / (1 + r))^{1/c_e}
-and g(u*) = (1 + r)^{−1/c_e}. The slope dz/dx is the active term's (envelope theorem).
+Computation: exact and vectorised, :mod:`~loader_model.simulation.cam_envelope`.
 
 Parameters (:meth:`TandemCam.from_deflection`)
 ----------------------------------------------
@@ -59,6 +56,7 @@ from typing import NamedTuple
 import numpy as np
 
 from loader_model.simulation._checks import as_number
+from loader_model.simulation.cam_envelope import cam_height
 from loader_model.simulation.roads import RoadProfile
 
 __all__ = [
@@ -93,18 +91,41 @@ CAM_SPACING_RATIO = 0.8
 #: Largest static deflection over the free radius accepted (a patch of 1.3 R; for the 12-16.5 tyre,
 #: 105 mm, half its section height).
 MAXIMUM_DEFLECTION_RATIO = 0.25
-_CHUNK_PAIRS = 2_000_000
 
 
 def check_envelope(envelope: object) -> str:
-    """``envelope`` if it is one of :data:`ENVELOPES`, else ValueError naming it."""
+    """Check an enveloping model's name.
+
+    Parameters
+    ----------
+    envelope : object
+        ``"rigid"`` or ``"tandem-cam"``.
+
+    Returns
+    -------
+    str
+        ``envelope``; ValueError naming it if it is not one of :data:`ENVELOPES`.
+    """
     if not isinstance(envelope, str) or envelope not in ENVELOPES:
         raise ValueError(f"envelope must be one of {list(ENVELOPES)}; got {envelope!r}")
     return envelope
 
 
 def contact_half_length(tyre_radius_m: float, deflection_m: float) -> float:
-    """Half chord a = sqrt(2 R δ − δ²) in m of a free radius R pressed down by δ."""
+    """Half chord a = sqrt(2 R δ − δ²) in m of a free radius R pressed down by δ.
+
+    Parameters
+    ----------
+    tyre_radius_m : float
+        Free radius R in m, > 0.
+    deflection_m : float
+        Static deflection δ in m, [0, :data:`MAXIMUM_DEFLECTION_RATIO` R].
+
+    Returns
+    -------
+    float
+        a in m.
+    """
     radius_m = as_number(tyre_radius_m, "tyre_radius_m", "m", minimum=0.0, strict_minimum=True)
     limit_m = MAXIMUM_DEFLECTION_RATIO * radius_m
     delta_m = as_number(deflection_m, "deflection_m", "m", minimum=0.0, maximum=limit_m)
@@ -180,8 +201,22 @@ class TandemCamRoad(NamedTuple):
 
 
 def tandem_cam_road(profile: RoadProfile, distance_m: object, cam: TandemCam) -> TandemCamRoad:
-    """Effective height, plane slope and height rate of ``profile`` under ``cam`` at axle
-    distances ``distance_m`` (any shape)."""
+    """Effective height, plane slope and height rate of ``profile`` under ``cam`` (module notes).
+
+    Parameters
+    ----------
+    profile : RoadProfile
+        Raw ground profile.
+    distance_m : array_like
+        Axle positions s in m (any shape, any order).
+    cam : TandemCam
+        The tandem cam of the axle.
+
+    Returns
+    -------
+    TandemCamRoad
+        w(s), tan β(s) and dw/ds, each shaped like ``distance_m``.
+    """
     road = tandem_cam_axles(profile, np.asarray(distance_m, dtype=float)[..., None], (cam,))
     return TandemCamRoad(*(field[..., 0] for field in road))
 
@@ -189,8 +224,22 @@ def tandem_cam_road(profile: RoadProfile, distance_m: object, cam: TandemCam) ->
 def tandem_cam_axles(
     profile: RoadProfile, distance_m: object, cams: tuple[TandemCam, ...]
 ) -> TandemCamRoad:
-    """:func:`tandem_cam_road` for several axles at once: ``distance_m`` (..., n) under the n
-    ``cams``, which may differ in spacing only (one cam shape, evaluated in one pass)."""
+    """:func:`tandem_cam_road` for several axles at once, in one pass of the cam shape.
+
+    Parameters
+    ----------
+    profile : RoadProfile
+        Raw ground profile.
+    distance_m : array_like
+        (..., n) axle positions in m, the last axis over the n axles.
+    cams : tuple of TandemCam
+        One per axle; they may differ in spacing l_s only (one a_e, b_e, c_e).
+
+    Returns
+    -------
+    TandemCamRoad
+        Each field shaped like ``distance_m``.
+    """
     if not cams or not all(isinstance(cam, TandemCam) for cam in cams):
         raise ValueError(f"cams must be TandemCam instances; got {cams!r}")
     shape = cams[0]
@@ -207,104 +256,3 @@ def tandem_cam_axles(
     with np.errstate(divide="ignore", invalid="ignore"):
         slope = np.where(spacing > 0.0, (z[0] - z[1]) / np.where(spacing > 0.0, spacing, 1.0), rate)
     return TandemCamRoad(height, slope, rate)
-
-
-def cam_height(
-    profile: RoadProfile, distance_m: object, cam: TandemCam
-) -> tuple[np.ndarray, np.ndarray]:
-    """Bottom height z(x) in m of one cam centred at ``distance_m`` and its slope dz/dx."""
-    if not isinstance(profile, RoadProfile):
-        raise ValueError(f"profile must be a RoadProfile; got {type(profile).__name__}")
-    x_query = np.asarray(distance_m, dtype=float)
-    shape, x_flat = x_query.shape, x_query.ravel()
-    if x_flat.size and not np.all(np.isfinite(x_flat)):
-        raise ValueError("distance_m must be finite")
-    if x_flat.size == 0:
-        return np.empty(shape), np.empty(shape)
-    a_e, b_e, c_e = cam.half_length_m, cam.half_height_m, cam.exponent
-    margin_m = 2.0 * a_e + 1.0  # flat extension beyond the ends as two far vertices
-    first_m = min(profile.start_m, float(x_flat.min())) - margin_m
-    last_m = max(profile.end_m, float(x_flat.max())) + margin_m
-    d = np.concatenate([[first_m], profile.distance_m, [last_m]])
-    h = np.concatenate([[profile.height_m[0]], profile.height_m, [profile.height_m[-1]]])
-    width = np.diff(d)
-    sloped = width > 0.0
-    m = np.where(sloped, np.diff(h) / np.where(sloped, width, 1.0), 0.0)
-    with np.errstate(over="ignore"):
-        r = (np.abs(m) * a_e / b_e) ** (c_e / (c_e - 1.0))
-        tangent_offset = np.sign(m) * a_e * (r / (1.0 + r)) ** (1.0 / c_e)
-        lift = m * tangent_offset + b_e * (1.0 + r) ** (-1.0 / c_e)
-    lo = np.searchsorted(d, x_flat - a_e, side="left")
-    hi = np.searchsorted(d, x_flat + a_e, side="right")
-    count = hi - lo
-    # No vertex within reach: the cam rests on the one segment under it (tangent point inside).
-    clear = count == 0
-    segment = lo[clear] - 1
-    height = np.empty_like(x_flat)
-    slope = np.empty_like(x_flat)
-    height[clear] = h[segment] + m[segment] * (x_flat[clear] - d[segment]) + lift[segment]
-    slope[clear] = m[segment]
-    order = np.flatnonzero(~clear)
-    if order.size == 0:
-        return (height - b_e).reshape(shape), slope.reshape(shape)
-    order = order[np.argsort(count[order], kind="stable")]
-    chunk_queries = max(256, _CHUNK_PAIRS // (int(count.max()) + 2))
-    for start in range(0, order.size, chunk_queries):
-        chunk = order[start : start + chunk_queries]
-        height[chunk], slope[chunk] = _cam_chunk(
-            x_flat[chunk], lo[chunk], count[chunk], d, h, m, lift, tangent_offset, sloped, cam
-        )
-    return (height - b_e).reshape(shape), slope.reshape(shape)
-
-
-def _cam_chunk(
-    x: np.ndarray,
-    lo: np.ndarray,
-    count: np.ndarray,
-    d: np.ndarray,
-    h: np.ndarray,
-    m: np.ndarray,
-    lift: np.ndarray,
-    tangent_offset: np.ndarray,
-    sloped: np.ndarray,
-    cam: TandemCam,
-) -> tuple[np.ndarray, np.ndarray]:
-    """Cam-centre height z + b_e and its slope for one chunk of queries (module notes)."""
-    a_e, b_e, c_e = cam.half_length_m, cam.half_height_m, cam.exponent
-    offsets = np.arange(max(int(count.max()), 1) + 1)
-    column = x[:, None]
-    # Corners: vertices within a_e of x.
-    vertex = np.minimum(lo[:, None] + offsets[:-1], d.size - 1)
-    on_vertex = offsets[:-1] < count[:, None]
-    u = d[vertex] - column
-    t = np.minimum(np.abs(u) / a_e, 1.0)
-    t_c = t**c_e
-    rest = np.maximum(1.0 - t_c, 0.0)
-    vertex_value = np.where(on_vertex, h[vertex] + b_e * rest ** (1.0 / c_e), -np.inf)
-    # Segments where the cam is tangent to the segment's interior.
-    segment = np.clip(lo[:, None] - 1 + offsets, 0, m.size - 1)
-    touch = column + tangent_offset[segment]
-    on_segment = (
-        (offsets <= count[:, None])
-        & sloped[segment]
-        & (touch >= d[segment])
-        & (touch <= d[segment + 1])
-    )
-    segment_value = np.where(
-        on_segment, h[segment] + m[segment] * (column - d[segment]) + lift[segment], -np.inf
-    )
-    rows = np.arange(x.size)
-    best_vertex = np.argmax(vertex_value, axis=1)
-    best_segment = np.argmax(segment_value, axis=1)
-    top_vertex = vertex_value[rows, best_vertex]
-    top_segment = segment_value[rows, best_segment]
-    tv, uv = t[rows, best_vertex], u[rows, best_vertex]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        vertex_slope = (
-            (b_e / a_e) * np.sign(uv) * tv ** (c_e - 1.0) * (1.0 - tv**c_e) ** (1.0 / c_e - 1.0)
-        )
-    vertex_slope = np.where(uv == 0.0, 0.0, vertex_slope)
-    use_segment = top_segment >= top_vertex
-    centre = np.where(use_segment, top_segment, top_vertex)
-    slope = np.where(use_segment, m[segment[rows, best_segment]], vertex_slope)
-    return centre, slope
