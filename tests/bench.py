@@ -133,22 +133,33 @@ def _symbolic_call(function):
 def _bench_roads(solve: float) -> None:
     """Road inputs (issue 12): envelope, drive tables, and the simulator's per-step lookup."""
     from loader_model.simulation import (
+        TandemCam,
         effective_road,
         iso8608_course,
         paper_course,
         single_board,
+        tandem_cam_road,
     )
 
     board = single_board(height_m=0.04, width_m=0.14)
     distance_m = np.linspace(-1.0, 1.0, 100_000)
     envelope = _median_seconds(lambda: effective_road(board, distance_m, 0.42), 5)
     _report("envelope, board, per query point", envelope / distance_m.size, unit="us")
+    cam = TandemCam.from_deflection(0.42, 0.009)
+    tandem = _median_seconds(lambda: tandem_cam_road(board, distance_m, cam), 5)
+    per_query = envelope / distance_m.size
+    _report("tandem cam, board, per query point", tandem / distance_m.size, per_query, unit="us")
     course = paper_course(9)
     table = _median_seconds(lambda: course.road_input(1.2), 5)
     _report("paper course 9 km/h table at 1 kHz", table)
+    cams = (cam, TandemCam.from_deflection(0.42, 0.01))
+    cam_table = _median_seconds(lambda: course.road_input(1.2, cams=cams), 5)
+    _report("  the same, tandem cams", cam_table, table)
     iso = iso8608_course("D", 10.0, length_m=100.0, seed=0)
     iso_table = _median_seconds(lambda: iso.road_input(1.2), 3)
     _report("ISO 8608 class D 100 m at 10 km/h, 1 kHz", iso_table)
+    iso_cams = _median_seconds(lambda: iso.road_input(1.2, cams=cams), 3)
+    _report("  the same, tandem cams", iso_cams, iso_table)
     drive = course.road_input(1.2)
     lookup = _median_seconds(lambda: [drive.road(0.5123) for _ in range(10_000)], 5) / 10_000
     _report("road(t) scalar lookup", lookup, solve, unit="us")

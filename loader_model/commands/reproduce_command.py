@@ -13,13 +13,21 @@ HELP = "reproduce the paper's results on the default loader and write the report
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Register ``--output``, ``--jobs``, ``--trials``, ``--seed``, ``--no-progress``."""
+    """Register ``--output``, ``--jobs``, ``--trials``, ``--seed``, ``--envelope``,
+    ``--no-progress``."""
     parser.add_argument(
         "--output", default="results/report", metavar="DIR", help="report folder (results/report)"
     )
     parser.add_argument("--jobs", type=int, default=2, metavar="N", help="worker processes (2)")
     parser.add_argument("--trials", type=int, default=4, metavar="N", help="trials per cell (4)")
     parser.add_argument("--seed", type=int, default=0, metavar="N", help="base seed (0)")
+    parser.add_argument(
+        "--envelope",
+        choices=("tandem-cam", "rigid"),
+        default="tandem-cam",
+        help="how the tyres envelop the boards: tandem elliptical cams per axle from the static "
+        "tyre deflection (default) or rigid discs",
+    )
     parser.add_argument("--no-progress", action="store_true", help="no progress bar")
 
 
@@ -60,7 +68,11 @@ def run(args: argparse.Namespace) -> int:
     if args.seed < 0:
         raise ValueError(f"--seed must be >= 0; got {args.seed}")
     options = ReportOptions(
-        trials=args.trials, seed=args.seed, jobs=args.jobs, progress=not args.no_progress
+        trials=args.trials,
+        seed=args.seed,
+        jobs=args.jobs,
+        progress=not args.no_progress,
+        envelope=args.envelope,
     )
     summary: dict = {}
 

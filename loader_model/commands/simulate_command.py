@@ -64,6 +64,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument("--seed", type=int, default=0, metavar="N", help="seed of random roads")
     parser.add_argument(
+        "--envelope",
+        choices=("tandem-cam", "rigid"),
+        default="tandem-cam",
+        help="how the tyres envelop the road: tandem elliptical cams per axle from the static "
+        "tyre deflection (default) or rigid discs of radius 0.42 m",
+    )
+    parser.add_argument(
         "--output", metavar="FILE", default=None, help="time series: FILE.csv or FILE.npz"
     )
     parser.add_argument(
@@ -125,9 +132,11 @@ def run(args: argparse.Namespace) -> int:
 
         settings_file = load_settings(args.controller)
     law = "skyhook" if settings_file is not None else args.controller
-    scenario = resolve_scenario(args.params, args.load, controller=law, settings=settings_file)
+    scenario = resolve_scenario(
+        args.params, args.load, controller=law, settings=settings_file, envelope=args.envelope
+    )
     course = _course(args.course, args.speed, args.duration, args.seed)
-    title = f"{course.name}; {args.controller} controller, load {args.load}"
+    title = f"{course.name}; {args.controller} controller, load {args.load}, {args.envelope} tyres"
     try:
         result = simulate(course_input(course, scenario), scenario, duration_s=args.duration)
     except ModelValidityError as error:  # no comfort figure for it: the evidence, then the error

@@ -43,6 +43,7 @@ class ReportOptions:
     jobs: int = 2
     progress: bool = True
     duration_s: float | None = None
+    envelope: str = "tandem-cam"
 
 
 def table6_rows(cells: list[Table6Cell]) -> Rows:

@@ -10,6 +10,10 @@ What varies between simulated trials (each drawn from its own seed, module :func
 - the board positions: each board shifted by a normal of standard deviation
   :data:`POSITION_JITTER_M` (boards laid by hand).
 
+- nothing else: the tyres envelop the boards as tandem elliptical cams by default
+  (:attr:`TrialSpec.envelope`, :mod:`~loader_model.simulation.tandem_cam`), ``"rigid"`` for rigid
+  discs.
+
 - the sensors' noise: white noise of :data:`TRIAL_SENSOR_NOISE` on the controller's five
   readings (:class:`~loader_model.control.sensors.SensorModel`, applied inside the compiled 1 kHz
   loop), a fresh draw per trial. The paper names no sensor types or noise levels; the values
@@ -101,6 +105,8 @@ class TrialSpec:
         Simulated time (None: the whole course).
     k_fb : tuple of 4 float or None
         Skyhook gains of a designed controller (None: the settings file's, Table 3).
+    envelope : str
+        The tyres' enveloping model, ``"tandem-cam"`` or ``"rigid"``.
     """
 
     speed_kmh: float
@@ -111,6 +117,7 @@ class TrialSpec:
     course_seed: int
     duration_s: float | None = None
     k_fb: tuple[float, ...] | None = None
+    envelope: str = "tandem-cam"
 
 
 @dataclass(frozen=True)
@@ -132,6 +139,7 @@ def trial_specs(
     controllers: tuple[str, ...] = CONTROLLERS,
     duration_s: float | None = None,
     designed: dict[str, tuple[float, ...]] | None = None,
+    envelope: str = "tandem-cam",
 ) -> list[TrialSpec]:
     """All trials of the experiment, each drawn from its own seed (module notes).
 
@@ -147,6 +155,9 @@ def trial_specs(
         Simulated time of each trial (default: the whole course).
     designed : dict, optional
         :data:`DESIGNED_CONTROLLERS` name -> skyhook gains, run after ``controllers``.
+    envelope : str
+        The tyres' enveloping model of every trial (``"tandem-cam"`` or ``"rigid"``); it draws
+        nothing, so both give the same speeds, boards and noise.
 
     Returns
     -------
@@ -161,6 +172,8 @@ def trial_specs(
     unknown = sorted(set(designed) - set(DESIGNED_CONTROLLERS))
     if unknown:
         raise ValueError(f"designed controllers {unknown}; allowed: {list(DESIGNED_CONTROLLERS)}")
+    if envelope not in ("rigid", "tandem-cam"):
+        raise ValueError(f"envelope must be 'rigid' or 'tandem-cam'; got {envelope!r}")
     every = (*CONTROLLERS, *DESIGNED_CONTROLLERS)
     specs = []
     for i, speed in enumerate(speeds_kmh):
@@ -181,7 +194,15 @@ def trial_specs(
                     course_seed = int(rng.integers(0, 2**31 - 1))
                     specs.append(
                         TrialSpec(
-                            speed, load, controller, trial, factor, course_seed, duration_s, gains
+                            speed,
+                            load,
+                            controller,
+                            trial,
+                            factor,
+                            course_seed,
+                            duration_s,
+                            gains,
+                            envelope,
                         )
                     )
     return specs
@@ -284,7 +305,7 @@ def run_trial(spec: TrialSpec) -> TrialOutcome:
     )
     course = dataclasses.replace(course, speed_m_s=course.speed_m_s * spec.speed_factor)
     result = simulate(
-        course_input(course, scenario),
+        course_input(course, scenario, envelope=spec.envelope),
         scenario,
         sensors=SensorModel(noise_std=TRIAL_SENSOR_NOISE, seed=spec.course_seed),
         duration_s=spec.duration_s,

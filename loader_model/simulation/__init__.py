@@ -3,6 +3,10 @@
 - :mod:`~loader_model.simulation.roads`: piecewise-linear ground profiles h(s), boards.
 - :mod:`~loader_model.simulation.envelope`: exact rigid-wheel enveloping filter (effective height
   and slope under an axle) and the horizontal road input it implies.
+- :mod:`~loader_model.simulation.tandem_cam`: Schmeitz's tandem elliptical cam, the default road
+  of a tyre that envelops obstacles shorter than its contact patch (one cam's exact height:
+  :mod:`~loader_model.simulation.cam_envelope`; figure: :mod:`~loader_model.simulation.
+  envelope_plot`).
 - :mod:`~loader_model.simulation.iso8608`: ISO 8608 random roads by class from a seed, PSD check.
 - :mod:`~loader_model.simulation.road_csv`: profiles from and to CSV files with units.
 - :mod:`~loader_model.simulation.travel`: the plant's road input w(t), ẇ(t) per axle as a table.
@@ -54,6 +58,13 @@ from loader_model.simulation.iso8608 import (
 from loader_model.simulation.road_csv import RoadFileError, read_road_csv, write_road_csv
 from loader_model.simulation.road_plot import plot_course
 from loader_model.simulation.roads import RoadProfile, board_course, flat_road, single_board
+from loader_model.simulation.tandem_cam import (
+    DEFAULT_ENVELOPE,
+    ENVELOPES,
+    TandemCam,
+    TandemCamRoad,
+    tandem_cam_road,
+)
 from loader_model.simulation.travel import (
     DEFAULT_SAMPLE_RATE_HZ,
     DEFAULT_TYRE_RADIUS_M,
@@ -66,8 +77,10 @@ __all__ = [
     "BOARD_HEIGHT_M",
     "BOARD_WIDTH_M",
     "CLASS_PSD_M3",
+    "DEFAULT_ENVELOPE",
     "DEFAULT_SAMPLE_RATE_HZ",
     "DEFAULT_TYRE_RADIUS_M",
+    "ENVELOPES",
     "FIG10_SPEED_KMH",
     "ISO8608_BAND_CYCLES_M",
     "LEAD_IN_M",
@@ -81,6 +94,8 @@ __all__ = [
     "RoadFileError",
     "RoadInput",
     "RoadProfile",
+    "TandemCam",
+    "TandemCamRoad",
     "board_course",
     "classify_psd",
     "displacement_psd",
@@ -98,5 +113,6 @@ __all__ = [
     "road_input",
     "single_board",
     "single_obstacle_course",
+    "tandem_cam_road",
     "write_road_csv",
 ]

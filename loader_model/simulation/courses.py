@@ -25,6 +25,7 @@ from dataclasses import dataclass
 from loader_model.simulation._checks import as_number
 from loader_model.simulation.iso8608 import iso8608_profile
 from loader_model.simulation.roads import RoadProfile, board_course
+from loader_model.simulation.tandem_cam import TandemCam
 from loader_model.simulation.travel import (
     DEFAULT_SAMPLE_RATE_HZ,
     DEFAULT_TYRE_RADIUS_M,
@@ -101,8 +102,10 @@ class Course:
         tyre_radius_m: float = DEFAULT_TYRE_RADIUS_M,
         sample_rate_hz: float = DEFAULT_SAMPLE_RATE_HZ,
         slope_to_x_m: Sequence[float] = (0.0, 0.0),
+        cams: Sequence[TandemCam] | None = None,
     ) -> RoadInput:
-        """The drive's road input table (:func:`~loader_model.simulation.travel.road_input`)."""
+        """The drive's road input table (:func:`~loader_model.simulation.travel.road_input`;
+        ``cams``: the tandem cams of axles A and B, default rigid discs)."""
         wheelbase_m = as_number(wheelbase_m, "wheelbase_m", "m", minimum=0.0, maximum=10.0)
         return road_input(
             self.profile,
@@ -113,6 +116,7 @@ class Course:
             tyre_radius_m=tyre_radius_m,
             sample_rate_hz=sample_rate_hz,
             slope_to_x_m=slope_to_x_m,
+            cams=cams,
         )
 
 

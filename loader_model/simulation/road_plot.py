@@ -8,12 +8,14 @@ from __future__ import annotations
 
 import os
 import tempfile
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 
 from loader_model.simulation.courses import Course
 from loader_model.simulation.envelope import effective_road
+from loader_model.simulation.tandem_cam import TandemCam, tandem_cam_road
 from loader_model.simulation.travel import DEFAULT_TYRE_RADIUS_M
 
 __all__ = ["plot_course"]
@@ -26,6 +28,7 @@ def plot_course(
     wheelbase_m: float,
     tyre_radius_m: float = DEFAULT_TYRE_RADIUS_M,
     distance_range_m: tuple[float, float] | None = None,
+    cams: Sequence[TandemCam] | None = None,
 ) -> Path:
     """Write a three-panel figure of ``course`` to ``path`` (PNG, PDF or SVG).
 
@@ -45,6 +48,11 @@ def plot_course(
         Wheel radius R in m.
     distance_range_m : (float, float), optional
         Distance axis limits of the first two panels in m; default the whole drive of the front axle.
+    cams : sequence of two TandemCam, optional
+        Tandem cams of axles A and B (:func:`~loader_model.simulation.simulator.course_input`
+        builds them from the static deflections): the first two panels add axle A's effective
+        height and slope beside the rigid disc's, and the third panel shows the cams' inputs.
+        Default: rigid discs only.
 
     Returns
     -------
@@ -56,7 +64,7 @@ def plot_course(
         raise ValueError(f"plot path must end in .png, .pdf or .svg; got {str(path)!r}")
     if not path.parent.is_dir():
         raise ValueError(f"plot path folder does not exist: {str(path.parent)!r}")
-    drive = course.road_input(wheelbase_m, tyre_radius_m=tyre_radius_m)
+    drive = course.road_input(wheelbase_m, tyre_radius_m=tyre_radius_m, cams=cams)
     if distance_range_m is None:
         low_m, high_m = course.start_m, float(drive.axle_distance(drive.duration_s)[0])
     else:
@@ -88,12 +96,20 @@ def plot_course(
         lw=1.2,
         label=f"effective h_eff(s), rigid wheel R = {tyre_radius_m:g} m",
     )
+    if drive.cams is not None:
+        cam = drive.cams[0]
+        road = tandem_cam_road(profile, distance_m, cam)
+        label = f"effective w(s), tandem cam of axle A (l_s = {cam.spacing_m * 1e3:.0f} mm)"
+        top.plot(distance_m, road.height_m * 1e3, color="C2", lw=1.2, label=label)
     top.set_xlabel("distance s (m)")
     top.set_ylabel("height (mm)")
     top.set_title(course.name)
     top.margins(y=0.35)
     top.legend(loc="upper right")
-    middle.plot(distance_m, effective.slope, color="C1", lw=1.0)
+    middle.plot(distance_m, effective.slope, color="C1", lw=1.0, label="rigid wheel")
+    if drive.cams is not None:
+        middle.plot(distance_m, road.slope, color="C2", lw=1.0, label="tandem cam, axle A")
+        middle.legend(loc="upper right")
     middle.set_xlabel("distance s (m)")
     middle.set_ylabel("effective slope tan β (-)")
     for axes in (top, middle):

@@ -8,8 +8,10 @@ command u0 and outputs y0), the controller Function ``(z, y, settings) -> (z_nex
 :func:`resolve_scenario` builds one from what users pass (objects, TOML paths, shipped names):
 the parameter files resolved and checked once, the equilibrium computed once, and the ride
 controller's settings vector and fixed point (:func:`~loader_model.simulation.ride_control.
-plant_controller_setup`) taken from that plant. Build one per (plant, controller) condition and
-reuse it for every run of the condition: nothing in it depends on the road or the seed.
+plant_controller_setup`) taken from that plant, and how its tyres envelop the road
+(:data:`~loader_model.simulation.tandem_cam.ENVELOPES`, read by :func:`~loader_model.simulation.
+simulator.course_input`). Build one per (plant, controller) condition and reuse it for every run
+of the condition: nothing in it depends on the road or the seed.
 """
 
 from __future__ import annotations
@@ -32,6 +34,7 @@ from loader_model.simulation.ride_control import (
     plant_controller,
     plant_controller_setup,
 )
+from loader_model.simulation.tandem_cam import DEFAULT_ENVELOPE, check_envelope
 
 if TYPE_CHECKING:
     from loader_model.control.settings import ControllerSettings
@@ -76,6 +79,8 @@ class Scenario:
     name : str
         The ride controller's name (:data:`~loader_model.simulation.ride_control.
         RIDE_CONTROLLERS`), or the Function's name for another controller.
+    envelope : str
+        The tyres' enveloping model, ``"tandem-cam"`` (default) or ``"rigid"``.
     """
 
     plant: PlantScenario
@@ -83,8 +88,10 @@ class Scenario:
     settings: np.ndarray
     controller_state: np.ndarray
     name: str = ""
+    envelope: str = DEFAULT_ENVELOPE
 
     def __post_init__(self) -> None:
+        check_envelope(self.envelope)
         if not isinstance(self.plant, PlantScenario):
             raise TypeError(f"plant must be a PlantScenario; got {type(self.plant).__name__}")
         controller = check_controller(self.controller)
@@ -127,10 +134,11 @@ def closed_loop(
     settings: Sequence[float] = (),
     controller_state: Sequence[float] | None = None,
     name: str = "",
+    envelope: str = DEFAULT_ENVELOPE,
 ) -> Scenario:
     """``plant`` with a controller Function as :func:`~loader_model.simulation.simulator.
     simulate` takes it: without one the pump holds u0 (the hold controller with u0 as its
-    setting); ``controller_state`` defaults to zeros."""
+    setting); ``controller_state`` defaults to zeros; ``envelope`` is the tyres' model."""
     if controller is None:
         if len(settings):
             raise ValueError("settings are for a controller; without one the pump holds u0")
@@ -138,7 +146,8 @@ def closed_loop(
     controller = check_controller(controller)
     if controller_state is None:
         controller_state = np.zeros(controller.size1_in(0))
-    return Scenario(plant, controller, np.asarray(settings, dtype=float), controller_state, name)
+    vector = np.asarray(settings, dtype=float)
+    return Scenario(plant, controller, vector, controller_state, name, envelope)
 
 
 def _controller_settings(settings: Any) -> ControllerSettings:
@@ -168,6 +177,7 @@ def ride_scenario(
     settings: ControllerSettings | str | Path | None = None,
     *,
     pressure_norm_pa: float | None = None,
+    envelope: str = DEFAULT_ENVELOPE,
 ) -> Scenario:
     """The ride controller ``controller`` on a resolved plant (no second equilibrium).
 
@@ -184,6 +194,8 @@ def ride_scenario(
         shipped Table 3 settings.
     pressure_norm_pa : float, optional
         ‖p_A‖∞ in Pa (section 3.3); default: the plant's bucket load's.
+    envelope : str
+        The tyres' enveloping model (:data:`~loader_model.simulation.tandem_cam.ENVELOPES`).
 
     Raises
     ------
@@ -207,7 +219,7 @@ def ride_scenario(
                 f"{plant.parameter('accumulator_on')!r}; allowed: 1.0, "
                 "PlantOptions(accumulator=True))"
             )
-        return closed_loop(plant, name=controller)
+        return closed_loop(plant, name=controller, envelope=envelope)
     if pressure_norm_pa is None:
         if plant.load is None:
             raise ValueError(
@@ -218,7 +230,7 @@ def ride_scenario(
     vector, state = plant_controller_setup(
         controller, plant, float(pressure_norm_pa), _controller_settings(settings)
     )
-    return Scenario(plant, plant_controller(controller), vector, state, controller)
+    return Scenario(plant, plant_controller(controller), vector, state, controller, envelope)
 
 
 def resolve_scenario(
@@ -227,6 +239,7 @@ def resolve_scenario(
     options: PlantOptions | None = None,
     controller: str = "baseline",
     settings: ControllerSettings | str | Path | None = None,
+    envelope: str = DEFAULT_ENVELOPE,
 ) -> Scenario:
     """A closed-loop scenario from files, names or objects, each resolved once (module notes).
 
@@ -242,6 +255,8 @@ def resolve_scenario(
         A ride controller (:func:`ride_scenario`).
     settings : ControllerSettings, str or Path, optional
         Its settings (:func:`ride_scenario`).
+    envelope : str
+        ``"tandem-cam"`` (default) or ``"rigid"``: how the tyres envelop the road.
 
     Returns
     -------
@@ -255,7 +270,8 @@ def resolve_scenario(
     _check_name(controller)
     if options is None:
         options = PlantOptions(accumulator=controller == "passive")
-    return ride_scenario(resolve_plant(loader, load, options), controller, settings)
+    plant = resolve_plant(loader, load, options)
+    return ride_scenario(plant, controller, settings, envelope=envelope)
 
 
 def as_plant(params: Sequence[float] | np.ndarray | PlantScenario | Scenario) -> PlantScenario:

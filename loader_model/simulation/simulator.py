@@ -35,7 +35,8 @@ from loader_model.simulation.events import DEFAULT_AIRBORNE_MIN_S, find_events
 from loader_model.simulation.result import SimulationResult
 from loader_model.simulation.scenario import Scenario, as_plant, as_scenario
 from loader_model.simulation.stepper import compile_period
-from loader_model.simulation.travel import RoadInput
+from loader_model.simulation.tandem_cam import DEFAULT_ENVELOPE, TandemCam, check_envelope
+from loader_model.simulation.travel import DEFAULT_TYRE_RADIUS_M, RoadInput
 from loader_model.simulation.validity import ValidityBounds, resolve_bounds
 from loader_model.simulation.validity_check import ModelValidityError, SimulationError
 
@@ -59,6 +60,7 @@ def course_input(
     course: Course,
     params: np.ndarray | PlantScenario | Scenario,
     sample_rate_hz: float = 1000.0,
+    envelope: str | None = None,
 ) -> RoadInput:
     """The road input table of ``course`` for the loader of ``params``.
 
@@ -68,14 +70,40 @@ def course_input(
     ``params`` may be a parameter vector (its equilibrium is computed here) or a
     :class:`~loader_model.plant.scenario.PlantScenario` or
     :class:`~loader_model.simulation.scenario.Scenario` (its static tyre loads are used).
+
+    ``envelope`` (:data:`~loader_model.simulation.tandem_cam.ENVELOPES`; default: the
+    Scenario's, else ``"tandem-cam"``): ``"rigid"`` for rigid discs of radius
+    :data:`~loader_model.simulation.travel.DEFAULT_TYRE_RADIUS_M`, ``"tandem-cam"`` for a tandem
+    elliptical cam per axle whose spacing follows that axle's static deflection
+    δ_i = F_iy0 / k_iy (:meth:`~loader_model.simulation.tandem_cam.TandemCam.from_deflection`):
+    the patch, and so the road, differs between bucket loads.
     """
+    if envelope is None:
+        envelope = params.envelope if isinstance(params, Scenario) else DEFAULT_ENVELOPE
+    check_envelope(envelope)
     plant = as_plant(params)
-    gains = (
-        plant.output("F_Ay") / plant.parameter("k_Ax"),
-        plant.output("F_By") / plant.parameter("k_Bx"),
-    )
+    loads = (plant.output("F_Ay"), plant.output("F_By"))
+    gains = (loads[0] / plant.parameter("k_Ax"), loads[1] / plant.parameter("k_Bx"))
+    cams = None
+    if envelope == "tandem-cam":
+        cams = tuple(_axle_cam(plant, axle, load) for axle, load in zip("AB", loads, strict=True))
     wheelbase = plant.parameter("A_x") - plant.parameter("B_x")
-    return course.road_input(wheelbase, sample_rate_hz=sample_rate_hz, slope_to_x_m=gains)
+    return course.road_input(
+        wheelbase, sample_rate_hz=sample_rate_hz, slope_to_x_m=gains, cams=cams
+    )
+
+
+def _axle_cam(plant: PlantScenario, axle: str, load_n: float) -> TandemCam:
+    """The tandem cam of ``axle`` at its static deflection F_iy0 / k_iy, or ValueError naming it."""
+    deflection_m = load_n / plant.parameter(f"k_{axle}y")
+    try:
+        return TandemCam.from_deflection(DEFAULT_TYRE_RADIUS_M, deflection_m)
+    except ValueError as error:
+        raise ValueError(
+            f"tyre {axle}: static deflection F_{axle}y0 / k_{axle}y = {load_n:.6g} N / "
+            f"{plant.parameter(f'k_{axle}y'):.6g} N/m = {deflection_m:.6g} m is outside the "
+            f"tandem cam's range ({error}); give a stiffer k_{axle}y or envelope='rigid'"
+        ) from None
 
 
 def exogenous_table(

@@ -2,15 +2,16 @@ r"""Road input of the plant for a drive at constant speed: w(t) and ẇ(t) per a
 
 The vehicle drives in +x at speed v. The front axle A is at distance s_A(t) = s_0 + v t along the
 profile, the rear axle B a wheelbase L behind it, s_B(t) = s_A(t) − L, so the rear axle sees the
-front axle's road delayed by L / v. Both tyres are rigid discs of radius R
-(:mod:`~loader_model.simulation.envelope`).
+front axle's road delayed by L / v. Each tyre envelops the ground either as a rigid disc of radius R
+(:mod:`~loader_model.simulation.envelope`, ``cams=None``) or as a tandem elliptical cam per axle
+(:mod:`~loader_model.simulation.tandem_cam`, whose spacing follows that axle's static deflection).
 
 The plant's road input (``derive/symbols.py``) is the displacement of each tyre's contact point,
 w = (w_Ax, w_Ay, w_Bx, w_By) in m, and its rate ẇ in m/s:
 
 .. math::
 
-    w_{iy}(t) = h_\mathrm{eff}(s_i(t)), \qquad \dot w_{iy} = v \tan\beta_i,
+    w_{iy}(t) = h_\mathrm{eff}(s_i(t)), \qquad \dot w_{iy} = v\, dh_\mathrm{eff}/ds,
     \qquad w_{ix}(t) = -c_i \tan\beta_i, \qquad c_i = F_{iy0} / k_{ix},
     \qquad \dot w_{ix} = 0 .
 
@@ -22,6 +23,9 @@ to first order (the static load F_iy0 in place of the momentary F_iy; the neglec
 simulator that wants the exact law adds −F_iy tan β_i itself from :attr:`RoadInput.slope`. Loss of
 contact is the plant's business: its contact law drops both tyre forces when F_y would pull.
 
+For the rigid disc dh_eff/ds = tan β; for the tandem cam tan β is the slope of the plane through
+the two cams and dh_eff/ds the mean of their slopes (:attr:`RoadInput.slope` holds tan β).
+
 Which input the simulator should use: w_y = h_eff (never the raw profile), and for the horizontal
 direction the effective slope. With the generated plant as it is, pass c_i = F_iy0 / k_ix (6.9 mm
 front and 10.3 mm rear for the default loader) so that w_x carries the effective-plane force to first
@@ -30,8 +34,8 @@ contact point (R sin β, up to 0.18 m on a 4 cm board) is not a displacement inp
 x spring: through k_x it would give forces of hundreds of kN.
 
 Table and interpolation: samples on a uniform time grid at ``sample_rate_hz``, exact at the nodes
-(the envelope is computed at each node's axle position), linear in between. ẇ_y is the exact v tan β
-at the nodes. ẇ_x is 0: w_x is the static-load equivalent of the road-plane force, not a motion of
+(the envelope is computed at each node's axle position), linear in between. ẇ_y is the exact
+v dh_eff/ds at the nodes. ẇ_x is 0: w_x is the static-load equivalent of the road-plane force, not a motion of
 the ground, and its rate would add a spurious damper force c_x ẇ_x (an impulse at each first contact,
 where tan β jumps).
 Between nodes the error is largest where the slope jumps (first contact with an edge, jump Δ): at
@@ -49,6 +53,7 @@ import numpy as np
 from loader_model.simulation._checks import as_number
 from loader_model.simulation.envelope import effective_road
 from loader_model.simulation.roads import RoadProfile
+from loader_model.simulation.tandem_cam import TandemCam, tandem_cam_axles
 
 __all__ = [
     "DEFAULT_SAMPLE_RATE_HZ",
@@ -86,6 +91,8 @@ class RoadInput:
         The drive: speed, wheelbase, front-axle distance at t = 0, tyre radius, table rate.
     slope_to_x_m : tuple of float
         c_A, c_B in w_x = −c tan β.
+    cams : tuple of two TandemCam or None
+        The tandem cams of axles A and B, or None for the rigid disc of radius ``tyre_radius_m``.
     """
 
     time_s: np.ndarray
@@ -99,6 +106,12 @@ class RoadInput:
     tyre_radius_m: float
     sample_rate_hz: float
     slope_to_x_m: tuple[float, float]
+    cams: tuple[TandemCam, TandemCam] | None = None
+
+    @property
+    def envelope(self) -> str:
+        """``"rigid"`` or ``"tandem-cam"``."""
+        return "rigid" if self.cams is None else "tandem-cam"
 
     @property
     def duration_s(self) -> float:
@@ -121,7 +134,7 @@ class RoadInput:
     def exact_road(self, time_s: object) -> np.ndarray:
         """w at ``time_s`` from the envelope itself, no table (slow; for checks); shape (..., 4)."""
         distance = self.axle_distance(time_s)
-        height_m, slope = effective_road(self.profile, distance, self.tyre_radius_m)
+        height_m, slope, _ = _effective(self.profile, distance, self.tyre_radius_m, self.cams)
         horizontal_m = -np.asarray(self.slope_to_x_m) * slope
         return np.stack(
             [horizontal_m[..., 0], height_m[..., 0], horizontal_m[..., 1], height_m[..., 1]],
@@ -151,6 +164,7 @@ def road_input(
     tyre_radius_m: float = DEFAULT_TYRE_RADIUS_M,
     sample_rate_hz: float = DEFAULT_SAMPLE_RATE_HZ,
     slope_to_x_m: Sequence[float] = (0.0, 0.0),
+    cams: Sequence[TandemCam] | None = None,
 ) -> RoadInput:
     """Tabulate the road input w(t), ẇ(t) of a drive over ``profile`` at constant speed.
 
@@ -173,6 +187,9 @@ def road_input(
     slope_to_x_m : sequence of two float
         c_A, c_B in m in w_x = −c tan β: the static vertical tyre load over the longitudinal tyre
         stiffness, F_iy0 / k_ix, per axle; (0, 0) gives w_x = 0.
+    cams : sequence of two TandemCam, optional
+        Tandem elliptical cams of axles A and B (:meth:`~loader_model.simulation.tandem_cam.
+        TandemCam.from_deflection`); default: rigid discs of radius ``tyre_radius_m``.
 
     Returns
     -------
@@ -195,6 +212,10 @@ def road_input(
         as_number(gains[0], "slope_to_x_m[0]", "m", minimum=0.0, maximum=1.0),
         as_number(gains[1], "slope_to_x_m[1]", "m", minimum=0.0, maximum=1.0),
     )
+    if cams is not None:
+        cams = tuple(cams)
+        if len(cams) != 2 or not all(isinstance(cam, TandemCam) for cam in cams):
+            raise ValueError(f"cams must be two TandemCam (axles A, B) or None; got {cams!r}")
     count = int(np.floor(duration_s * rate_hz + 1e-9)) + 1
     if count < 2 or count > 50_000_000:
         raise ValueError(
@@ -203,11 +224,12 @@ def road_input(
         )
     time_s = np.arange(count) / rate_hz
     distance_m = start_m + speed_m_s * time_s[:, None] - np.array([0.0, wheelbase_m])
-    height_m, slope = effective_road(profile, distance_m, tyre_radius_m)
+    height_m, slope, height_rate = _effective(profile, distance_m, tyre_radius_m, cams)
     if not np.all(np.isfinite(slope)):
         row, axle = np.argwhere(~np.isfinite(slope))[0]
+        wheel = f"rigid wheel of radius {tyre_radius_m:g} m" if cams is None else "tandem cam"
         raise ValueError(
-            f"the rigid wheel of radius {tyre_radius_m:g} m meets a wall at its equator at "
+            f"the {wheel} meets a wall at its equator at "
             f"{distance_m[row, axle]:.6g} m (axle {'AB'[axle]}): the profile has a step at least "
             "one radius tall"
         )
@@ -216,7 +238,12 @@ def road_input(
         [horizontal_m[:, 0], height_m[:, 0], horizontal_m[:, 1], height_m[:, 1]]
     )
     rate_m_s = np.column_stack(
-        [np.zeros(count), speed_m_s * slope[:, 0], np.zeros(count), speed_m_s * slope[:, 1]]
+        [
+            np.zeros(count),
+            speed_m_s * height_rate[:, 0],
+            np.zeros(count),
+            speed_m_s * height_rate[:, 1],
+        ]
     )
     for array in (time_s, road_m, rate_m_s, slope):
         array.setflags(write=False)
@@ -232,4 +259,19 @@ def road_input(
         tyre_radius_m=float(tyre_radius_m),
         sample_rate_hz=rate_hz,
         slope_to_x_m=gains_m,
+        cams=cams,
     )
+
+
+def _effective(
+    profile: RoadProfile,
+    distance_m: np.ndarray,
+    tyre_radius_m: float,
+    cams: tuple[TandemCam, TandemCam] | None,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Effective height, slope tan β and dh_eff/ds at axle distances (..., 2) (A, B)."""
+    if cams is None:
+        height_m, slope = effective_road(profile, distance_m, tyre_radius_m)
+        return height_m, slope, slope
+    road = tandem_cam_axles(profile, distance_m, cams)
+    return road.height_m, road.slope, road.height_rate

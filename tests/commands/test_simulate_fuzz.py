@@ -33,9 +33,11 @@ from tests.validity_rows import beyond_bounds
 RUNS = 200
 SETTINGS_FILE = str(Path(__file__).parents[2] / "loader_model" / "data" / "controller_refined.toml")
 COURSES = ("paper", "single", *(f"iso8608:{c}" for c in "ABCDEFGH"))
-#: Indices of :func:`fuzz_cases` (seed 19) run in the default suite: valid and stopped runs.
-FAST_CASES = (0, 1, 2, 12, 19, 22)
-_STOPPED_FAST = (19, 22)
+#: Indices of :func:`fuzz_cases` (seed 19) run in the default suite: valid and stopped runs
+#: (19: pitched back, 49: both tyres in the air; 22, stopped on rigid-disc roads, is valid on the
+#: default tandem-cam road).
+FAST_CASES = (0, 1, 2, 12, 19, 49)
+_STOPPED_FAST = (19, 49)
 
 
 def fuzz_cases(seed: int = 19, count: int = RUNS) -> list[list[str]]:

@@ -26,7 +26,7 @@ from loader_model.simulation.simulator import course_input, simulate
 
 def _check(balance: EnergyBalance, tolerance: float) -> None:
     assert balance.input_work_J["road"] > 1000.0  # joules: the boards really did work
-    assert balance.dissipated_J["tyres"] > 100.0
+    assert balance.dissipated_J["tyres"] > 50.0
     assert balance.input_work_J["disturbance"] == 0.0
     assert balance.relative_residual < tolerance, balance.table()
 
@@ -40,8 +40,9 @@ def _passive_run(load: str, duration_s: float | None) -> tuple[EnergyBalance, En
 
 
 def test_passive_run_balances_over_the_first_board() -> None:
-    """First 2 s, front axle over the first board (empty bucket). Measured: CVODES 8.8e-6 J
-    (2.6e-9 of the pump's 2800 J), fast simulator 18.4 J (5.5e-3)."""
+    """First 2 s, front axle over the first board (empty bucket). Measured with the default tandem
+    cam: CVODES 3.5e-6 J (1.2e-9 of the pump's 2783 J), fast simulator 2.0 J (6.9e-4); road work
+    1054 J, tyres 59 J (rigid discs: 8.8e-6 J, 18.4 J (5.5e-3); road 1649 J, tyres 326 J)."""
     reference, fast = _passive_run("empty", 2.0)
     _check(reference, 1e-7)
     _check(fast, 1e-2)

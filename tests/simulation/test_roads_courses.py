@@ -10,6 +10,7 @@ import pytest
 from loader_model.simulation import (
     BOARD_WIDTH_M,
     Course,
+    TandemCam,
     iso8608_course,
     paper_course,
     plot_course,
@@ -83,9 +84,14 @@ def test_course_errors_name_argument(call, message):
 
 def test_plot_course_writes_png(tmp_path):
     path = plot_course(tmp_path / "course.png", paper_course(9), wheelbase_m=1.2)
+    cams = (TandemCam.from_deflection(0.42, 0.0073), TandemCam.from_deflection(0.42, 0.0099))
+    cam_path = plot_course(
+        tmp_path / "cams.png", paper_course(9), wheelbase_m=1.2, cams=cams, distance_range_m=(-1, 1)
+    )
+    assert cam_path.stat().st_size > 10_000
     assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     with pytest.raises(ValueError, match=r"must end in \.png, \.pdf or \.svg"):
         plot_course(tmp_path / "course.jpg", paper_course(9), wheelbase_m=1.2)
     with pytest.raises(ValueError, match="distance_range_m must be"):
         plot_course(tmp_path / "c.png", paper_course(9), wheelbase_m=1.2, distance_range_m=(2, 1))
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["course.png"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cams.png", "course.png"]

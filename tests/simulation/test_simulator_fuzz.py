@@ -3,8 +3,9 @@ ISO 8608 roads up to class E, speeds up to 20 km/h, all four controllers. Each r
 finite result or a clear error (a refused parameter set naming its field, a stop where the run
 left the model's range of validity, or a failed solve, both naming the time and the state); none
 returns NaN, none hangs (each run is a few seconds of simulated time on the compiled fixed-step
-scheme). Measured: 166 finite, 32 refused, 2 stopped (seat acceleration above 50 g: a relief
-valve set below the static pressure, a tyre damper 14 times the default's)."""
+scheme). Measured: 162 finite, 36 refused (4 of them by the tandem-cam road: a tyre deflecting
+over a quarter of its radius), 2 stopped (seat acceleration above 50 g: a relief valve set below
+the static pressure, a tyre damper 14 times the default's)."""
 
 from __future__ import annotations
 
@@ -88,7 +89,13 @@ def test_fuzzed_runs_end_finite_or_with_a_clear_error() -> None:
                 "controller_state": state,
             }
         try:
-            result = simulate(course_input(course, params), params, duration_s=3.0, **control)
+            road = course_input(course, params)
+        except ValueError as error:  # a tyre deflecting over a quarter of its radius
+            assert "static deflection" in str(error) and "_" in str(error), str(error)
+            outcomes["refused"] += 1
+            continue
+        try:
+            result = simulate(road, params, duration_s=3.0, **control)
         except ModelValidityError as error:
             assert " s: " in str(error) and "; state: " in str(error), str(error)
             assert error.result.time_s[-1] == error.violation.time_s
