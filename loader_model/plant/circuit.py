@@ -11,7 +11,7 @@ circuit is in; per side of the piston (totals over the n cylinders):
 
 .. math::
 
-    Q_{A,net} &= h\,(Q_p + Q_{check} - Q_L) - Q_{relief} - Q_{acc} - Q_{seal}
+    Q_{A,net} &= h\,(Q_p - Q_L) + Q_{check} - Q_{relief} - Q_{acc} - Q_{seal}
                  - n A_p \dot x_{cyl} \\
     Q_{B,net} &= -h\,Q_p + Q_{charge} + h\,Q_L + Q_{seal} + n \alpha A_p \dot x_{cyl}
 
@@ -20,7 +20,10 @@ Which valve acts where:
 - *pump flow* Q_p and *Table 5's regression flow* Q_L = k_Lp (p_A − p_B) + k_Lv ẋ (Eq. 47, 48's
   sign): on the pump side of the load-holding valves, so only while they are open;
 - *anti-cavitation check* Q_check from the charge line: the charge check valves of the closed
-  pump circuit (pump side), so only while open;
+  pump circuit keep the pump's piston-side line at charge pressure at least, and a load-holding
+  valve is a pilot-operated check that blocks the flow out of the piston side but passes flow
+  into it; so the make-up reaches the cylinder in both states (without it a sealed piston side
+  would go to negative absolute pressure, a tension oil cannot carry, when the boom bounces);
 - *relief* Q_relief: a port (shock) relief on the cylinder side, always (it protects the sealed
   cylinder too);
 - *charge line* Q_charge: the rod side stays tied to the charge line in both states (the rod
@@ -88,7 +91,7 @@ def circuit_flows(
     valves = theta["valves_on"]
     pump_flow = open_ * theta["pump_on"] * theta["n_pump"] * displacement
     charge = valves * theta["G_charge"] * (theta["p_charge"] - p_b)
-    check = open_ * valves * theta["G_check"] * hyd.ramp(theta["p_charge"] - p_a, 1e4)
+    check = valves * theta["G_check"] * hyd.ramp(theta["p_charge"] - p_a, 1e4)
     relief = valves * theta["G_relief"] * hyd.ramp(p_a - theta["p_relief"], 1e5)
     regression = hyd.leakage_flow(theta["k_Lp"], theta["k_Lv"], p_a, p_b, velocity)
     seal = theta["n_cyl"] * theta["k_seal"] * (p_a - p_b)

@@ -19,7 +19,7 @@ sealed from the pump's circuit (:mod:`loader_model.plant.circuit`):
 
 .. math::
 
-    \dot p_A &= \frac{K_{oil}}{V_A}\left(h (Q_p + Q_{check} - Q_L) - Q_{relief} - Q_{seal}
+    \dot p_A &= \frac{K_{oil}}{V_A}\left(h (Q_p - Q_L) + Q_{check} - Q_{relief} - Q_{seal}
                - Q_{acc} - A_p \dot x_{cyl}\right) \quad \text{(Eq. 36)} \\
     \dot p_B &= \frac{K_{oil}}{V_B}\left(-h Q_p + Q_{charge} + h Q_L + Q_{seal}
                + \alpha A_p \dot x_{cyl}\right) \quad \text{(Eq. 37)} \\
@@ -27,11 +27,12 @@ sealed from the pump's circuit (:mod:`loader_model.plant.circuit`):
 
 with Q_p = n V_p (V_p saturated at ±V_p,max), the rod side tied to the charge line by the
 low-side valve Q_charge = G_charge (p_c − p_B) (the rod side is the low side while the boom
-carries its weight), an anti-cavitation check valve from the charge line into the pump's
-piston-side line, a port relief valve on the piston side, Table 5's pump-side regression flow
-Q_L (Eq. 47 with Eq. 48's sign; DESIGN.md errata 11), the piston seals' leakage Q_seal = n k_seal
-(p_A − p_B) behind closed valves, seal friction F_f (Eq. 46, errata 10 reading), end stops, and
-the accumulator through its orifice (between the valves and the cylinder). The pump's
+carries its weight), an anti-cavitation check valve from the charge line into the piston side
+(through the load-holding valve's check), a port relief valve on the piston side, Table 5's
+pump-side regression flow Q_L (Eq. 47 with Eq. 48's sign; DESIGN.md errata 11), the piston
+seals' leakage Q_seal = n k_seal (p_A − p_B) behind closed valves, seal friction F_f (Eq. 46,
+errata 10 reading), end stops, and the accumulator through its orifice (between the valves and
+the cylinder). The pump's
 displacement loop is the second-order system of Fig. 9 with its command saturated at ±V_p,max
 and its rate limited to ±V̇_p,max (Table 2, errata 8), each by the C¹ saturation of
 :mod:`loader_model.plant.components` (exact below 99 % of the limit).

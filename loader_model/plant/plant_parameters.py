@@ -9,7 +9,7 @@ Function's input. Switches are parameters too (0 or 1), so one compiled plant se
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -136,11 +136,16 @@ class PlantOptions:
         ValueError
             If ``controller`` is not a non-empty string.
         """
+        return cls(occupant=bool(occupant)).with_controller(controller)
+
+    def with_controller(self, controller: str) -> PlantOptions:
+        """These switches with the circuit of ``controller`` (:meth:`for_controller`): the
+        load-holding valves and the accumulator set, every other switch kept."""
         if not isinstance(controller, str) or not controller:
             raise ValueError(f"controller must be a non-empty name; got {controller!r}")
         name = controller.replace("_", "-")
         idle = name in IDLE_PUMP_CONTROLLERS
-        return cls(accumulator=name == "passive", holding=not idle, occupant=bool(occupant))
+        return replace(self, accumulator=name == "passive", holding=not idle)
 
     def switches(self) -> dict[str, float]:
         """The switch entries of the parameter vector (0.0 or 1.0), by parameter name."""
