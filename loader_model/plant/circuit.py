@@ -82,9 +82,7 @@ def circuit_flows(
     -------
     dict
         ``pump_flow`` (into the piston side), ``charge``, ``check``, ``relief``, ``leakage``
-        (from A to B: Table 5's flow while open, the seal leakage while closed), ``into_a`` and
-        ``into_b`` (net inflows of the chambers without the piston's displacement and the
-        accumulator).
+        (from A to B: Table 5's flow while open, the seal leakage while closed).
     """
     open_ = theta["holding_open"]
     closed = 1 - open_
@@ -102,6 +100,4 @@ def circuit_flows(
         "check": check,
         "relief": relief,
         "leakage": leakage,
-        "into_a": pump_flow + check - relief - leakage,
-        "into_b": -pump_flow + charge + leakage,
     }

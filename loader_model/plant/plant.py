@@ -150,10 +150,17 @@ def hydraulic_drive(x: Any, u: Any, theta: dict[str, Any], completed: Any) -> di
         )
     )
     k_oil = theta["K_oil"]
+    pump_flow, leakage = flows["pump_flow"], flows["leakage"]
+    # summed in the order of before the circuit states, so that open valves give the same
+    # floating-point rates (a lift-off trial can turn on a rounding difference)
     dp_a = hyd.chamber_pressure_rate(
-        k_oil, n * v_a, flows["into_a"] - q_acc - n * piston * velocity
+        k_oil,
+        n * v_a,
+        pump_flow + flows["check"] - flows["relief"] - q_acc - n * piston * velocity - leakage,
     )
-    dp_b = hyd.chamber_pressure_rate(k_oil, n * v_b, flows["into_b"] + n * annulus * velocity)
+    dp_b = hyd.chamber_pressure_rate(
+        k_oil, n * v_b, -pump_flow + flows["charge"] + n * annulus * velocity + leakage
+    )
     command = hyd.saturate(u, v_max, _SATURATION_BAND * v_max)
     rate = hyd.saturate(vd_p, vd_max, _SATURATION_BAND * vd_max)
     dvd_p = hyd.pump_displacement_acceleration(
