@@ -52,6 +52,6 @@ for event in result.events:
     print(event.describe())
 result.write("bump_run.csv")
 
-seat_z = result["f_Sy"] - result["f_Sy"][0]
+seat_z = result["f_Py"] - result["f_Py"][0]  # the seat pad under the occupant
 assert np.all(np.isfinite(seat_z))
 assert np.max(np.abs(seat_z)) > 0.1, "the bump must shake the seat"

@@ -43,7 +43,10 @@ def run(args: argparse.Namespace) -> int:
     print(f"  static rod pressure p_B      {static['p_B'] / 1e5:10.2f} bar (charge line)")
     print(f"  static cylinder force        {static['F_act'] / 1e3:10.2f} kN (both cylinders)")
     print(f"  piston position              {static['x_piston'] * 1e3:10.1f} mm from retracted")
-    print(f"  pump displacement to hold    {static['V_p_hold'] * 1e6:10.3f} cm³/rev (leakage)")
+    print(
+        f"  pump displacement to hold    {static['V_p_hold'] * 1e6:10.3f} cm³/rev "
+        "(Table 5 flow, valves open)"
+    )
     print(f"  k_eq (chambers closed)       {report.k_eq_n_per_m:10.4g} N/m (Eq. 28, errata 6)")
     print("\nModes of the coupled plant (frequency Hz / damping ratio):")
     for name, modes in report.modes.items():

@@ -18,8 +18,9 @@ V_p,ref with gain k_p V_p,max; its measured outputs are ŷ (``yh_x``, ``yh_y``, 
 ``yh_phi``); then u = −K y of :func:`~loader_model.control.comfort_design.optimise_gain` is exactly
 r = −K_fb ŷ and K is K_fb.
 
-Performance outputs (Eq. 49, 50): the seat accelerometer's specific force and the pitch
-acceleration through the ISO 2631-1 weightings, k_x W_d f_Sx, k_y W_k f_Sy, k_θ W_e θ̈1 with
+Performance outputs (Eq. 49, 50): the seat pad's specific force (the seated occupant on the
+cushion at S, :mod:`loader_model.plant.occupant`, as section 5.3 measured) and the chassis pitch
+acceleration through the ISO 2631-1 weightings, k_x W_d f_Px, k_y W_k f_Py, k_θ W_e θ̈1 with
 k = (1, 1, 0.4); the sum of their mean squares is a_total². Road: :mod:`road_filter`.
 """
 
@@ -57,8 +58,8 @@ __all__ = [
 MEASURED: tuple[str, ...] = ("yh_x", "yh_y", "yh_theta", "yh_phi")
 #: Weighted seat outputs: (name, plant output, ISO weighting, k of Eq. 50).
 PERFORMANCE_K: tuple[tuple[str, str, str, float], ...] = (
-    ("aw_x", "f_Sx", "Wd", 1.0),
-    ("aw_y", "f_Sy", "Wk", 1.0),
+    ("aw_x", "f_Px", "Wd", 1.0),
+    ("aw_y", "f_Py", "Wk", 1.0),
     ("aw_theta", "thetadd_1", "We", 0.4),
 )
 PERFORMANCE: tuple[str, ...] = tuple(p[0] for p in PERFORMANCE_K)

@@ -9,8 +9,10 @@ with z the filter states (:func:`controller_state_names`), y the sensor readings
 (:data:`~loader_model.control.settings.SETTINGS_NAMES`) and u = V_p,ref [m³/rev]. Filters are
 ZOH equivalents (:mod:`loader_model.control.filters`); the command is saturated at ±u_limit.
 
-- ``baseline``: u = u_hold, the feed-forward that holds the boom against leakage (no damping).
-- ``passive``: the same law; the accumulator is a plant option (``PlantOptions(accumulator=True)``).
+- ``baseline``: u = u_hold, the static command (no damping): 0 behind the closed load-holding
+  valves the baseline runs on (:mod:`loader_model.plant.circuit`; the boom sits on them).
+- ``passive``: the same law; the accumulator is a plant option
+  (``PlantOptions.for_controller("passive")``: behind closed load-holding valves).
 - ``virtual_accumulator``: the pressure loop of section 3.2 with p_A,ref = 0 on the high-passed p_A.
 - ``skyhook``: output feedback (Eq. 40, Table 3) through the pressure loop (Fig. 11):
 

@@ -159,7 +159,9 @@ def minimise_certified(
     """Minimise Φ of the module docstring from ``gain0`` (which must meet margin and limits).
 
     Returns a dict: ``gain``, ``cost`` (J), ``iterations``, ``history`` (J per iterate),
-    ``converged`` (projected gradient norm ≤ ``gtol`` relative), ``status``, ``time_s``.
+    ``phi_history`` (Φ per iterate: what the line search decreases; J alone may rise where the
+    barrier term falls more), ``converged`` (projected gradient norm ≤ ``gtol`` relative),
+    ``status``, ``time_s``.
     """
     started = time.perf_counter()
     free = mask.ravel()
@@ -175,7 +177,7 @@ def minimise_certified(
     objective.scale = first[2]
     phi, grad, j = evaluate(gain0)  # type: ignore[misc]
     gain, hessian_inv = gain0.copy(), np.eye(int(free.sum()))
-    history, status, converged = [j], "max_iterations", False
+    history, phi_history, status, converged = [j], [phi], "max_iterations", False
     g0 = max(float(np.linalg.norm(grad)), 1e-300)
     iteration = 0
     while iteration < max_iterations:
@@ -209,11 +211,13 @@ def minimise_certified(
             ) + rho * np.outer(step, step)
         gain, (phi, grad, j) = candidate, trial
         history.append(j)
+        phi_history.append(phi)
     return {
         "gain": gain,
         "cost": j,
         "iterations": iteration,
         "history": tuple(history),
+        "phi_history": tuple(phi_history),
         "converged": converged,
         "status": status,
         "time_s": time.perf_counter() - started,

@@ -4,7 +4,7 @@ loop beside Eq. 43."""
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -22,10 +22,19 @@ from loader_model.plant.plant_parameters import PlantOptions, plant_parameter_ve
 
 __all__ = ["HydraulicsReport", "hydraulics_report", "plot_pressure_loop"]
 
+#: Circuit settings whose modes the report lists: the loader's own, without the seated occupant
+#: (its modes on the seat cushion are not the hydraulics'; :mod:`loader_model.plant.occupant`).
 SETTINGS = {
-    "chambers closed (Eq. 28)": PlantOptions.closed(),
-    "operating point (pump, charge line, leakage, friction)": PlantOptions(),
-    "operating point with accumulator (passive ride control)": PlantOptions(accumulator=True),
+    "chambers closed (Eq. 28)": replace(PlantOptions.closed(), occupant=False),
+    "pump through open load-holding valves (virtual accumulator, skyhook)": (
+        PlantOptions.for_controller("skyhook", occupant=False)
+    ),
+    "closed load-holding valves, pump idle (baseline)": PlantOptions.for_controller(
+        "baseline", occupant=False
+    ),
+    "accumulator behind closed valves (passive ride control)": (
+        PlantOptions.for_controller("passive", occupant=False)
+    ),
 }
 
 

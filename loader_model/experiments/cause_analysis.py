@@ -1,12 +1,17 @@
-r"""Why the damping controllers raise a_total on this model: the linear seat response to one board.
+r"""What moves a_total between the controllers: the linear seat response to one board.
 
 The Table 6 experiment (module :mod:`loader_model.experiments.table6`) is nonlinear (tyre lift-off,
-valves, friction, pump limits). The sign reversal against the paper (section 5.3: the damping
-controllers *lower* a_total by up to 34 %; here they raise it) is already present in the linear
-model, so its causes can be isolated there, quickly and without randomness:
+valves, friction, pump limits). Its sign against the paper (section 5.3: the damping controllers
+*lower* a_total by up to 34 %) is already set in the linear model, so its causes can be isolated
+there, quickly and without randomness. With Table 5's flow read as a cylinder leak and the seat
+read on the rigid chassis the controllers raised a_total; on the circuit states (closed
+load-holding valves for baseline and passive, DESIGN.md errata 11) and the seat pad under a seated
+occupant (errata 13) they lower it (the variants below switch each back):
 
 - the plant (:func:`loader_model.plant.linear.linearise_plant`) at the static equilibrium of the
-  load case, with the accumulator connected for ``passive`` only (as in the trials);
+  load case, on the circuit of each controller as in the trials
+  (:meth:`~loader_model.plant.plant_parameters.PlantOptions.for_controller`: baseline and
+  passive on closed load-holding valves, passive with the accumulator);
 - the controllers' own linear equivalents, continuous
   (:func:`loader_model.control.linear_controller.linear_controller`), the loop closed by
   :func:`~loader_model.control.linear_controller.closed_loop`;
@@ -19,7 +24,8 @@ model, so its causes can be isolated there, quickly and without randomness:
       H_o(\omega) = \big(G_{o,A}(\omega) + j\omega G_{o,\dot A}(\omega)\big)
                     + e^{-j\omega L/v}\big(G_{o,B}(\omega) + j\omega G_{o,\dot B}(\omega)\big)
 
-- the seat as in the trials: k_o W_o H_o R for o = f_Sx (Wd, k 1), f_Sy (Wk, k 1), θ̈1 (We, k 0.4)
+- the seat as in the trials: k_o W_o H_o R for o = f_Px (Wd, k 1), f_Py (Wk, k 1) of the seat pad
+  under the occupant, θ̈1 (We, k 0.4) of the chassis
   (Eq. 49, 50); the energy :math:`E = \sum_o \int |k_o W_o H_o R|^2 df` over 0.05-100 Hz.
 
 For one transient of fixed duration, a_total ∝ √E, so the change against the baseline is
@@ -54,6 +60,10 @@ LINEAR_CONTROLLERS: tuple[str, ...] = ("baseline", "passive", "virtual_accumulat
 PARAMETER_VARIANTS: dict[str, dict[str, Any]] = {
     "model (parameter files)": {},
     "sensitivity: k_Lp = 0 (no Table 5 leakage slope)": {"k_Lp": 0.0},
+    "sensitivity: load-holding valves open for every controller (Table 5 as a cylinder leak)": {
+        "holding_open": 1.0
+    },
+    "sensitivity: occupant off (the seat read on the rigid chassis at S)": {"occupant_on": 0.0},
     "sensitivity: seal friction off (Table 4)": {"friction_on": 0.0},
     "sensitivity: tyre damping c_y x2": {"c_Ay": "x2", "c_By": "x2"},
 }
@@ -71,18 +81,18 @@ GAIN_PROBES: dict[str, tuple[float, float, float, float]] = {
     "k_phi = -0.22 only": (0.0, 0.0, 0.0, -0.22),
 }
 
-_SEAT = (("f_Sx", "Wd", 1.0), ("f_Sy", "Wk", 1.0), ("thetadd_1", "We", 0.4))
+_SEAT = (("f_Px", "Wd", 1.0), ("f_Py", "Wk", 1.0), ("thetadd_1", "We", 0.4))
 _ROAD = ("w_Ay", "wd_Ay", "w_By", "wd_By")
 
 
-def _parameters(load: str, accumulator: bool, overrides: dict[str, Any]) -> np.ndarray:
+def _parameters(load: str, controller: str, overrides: dict[str, Any]) -> np.ndarray:
     from loader_model.plant.plant_parameters import (
         PLANT_PARAMETER_NAMES,
         PlantOptions,
         plant_parameter_vector,
     )
 
-    params = plant_parameter_vector(None, load, PlantOptions(accumulator=accumulator))
+    params = plant_parameter_vector(None, load, PlantOptions.for_controller(controller))
     for name, value in overrides.items():
         index = PLANT_PARAMETER_NAMES.index(name)
         if isinstance(value, str):  # "x<factor>": scale the file's value
@@ -103,22 +113,23 @@ def _closed_loops(
     from loader_model.plant.equilibrium import static_state
     from loader_model.plant.linear import linearise_plant
     from loader_model.plant.plant import plant_function
+    from loader_model.plant.plant_parameters import PlantOptions
 
     settings = default_settings()
     if gains is not None:
         settings = dataclasses.replace(settings, k_fb=tuple(float(g) for g in gains))
     norm = bucket_load(load).pressure_normalisation
-    plants: dict[bool, tuple[Any, np.ndarray, np.ndarray, float]] = {}
+    plants: dict[Any, tuple[Any, np.ndarray, np.ndarray, float]] = {}
     loops = {}
     for name in LINEAR_CONTROLLERS:
-        accumulator = name == "passive"
-        if accumulator not in plants:  # one equilibrium per plant
-            params = _parameters(load, accumulator, overrides)
+        circuit = PlantOptions.for_controller(name)
+        if circuit not in plants:  # one equilibrium per plant
+            params = _parameters(load, name, overrides)
             x0, u0 = static_state(params)
             y0 = np.asarray(plant_function()(x0, u0, np.zeros(11), params)[1]).ravel()
             linear = linearise_plant(params, x0, u0).state_space()
-            plants[accumulator] = (linear, params, y0, u0)
-        plant, params, y0, u0 = plants[accumulator]
+            plants[circuit] = (linear, params, y0, u0)
+        plant, params, y0, u0 = plants[circuit]
         if name in ("baseline", "passive"):  # the pump holds its static command
             loops[name] = (plant, params)
             continue

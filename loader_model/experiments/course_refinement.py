@@ -34,7 +34,11 @@ def _drive(k_fb: np.ndarray, load: str, speed_kmh: float, params: np.ndarray | N
     from loader_model.simulation.courses import paper_course
     from loader_model.simulation.simulator import course_input, simulate
 
-    plant = plant_scenario(load, False) if params is None else PlantScenario.from_vector(params)
+    plant = (
+        plant_scenario(load, "skyhook-optimised")
+        if params is None
+        else PlantScenario.from_vector(params)
+    )
     norm = bucket_load(load).pressure_normalisation
     scenario = controller_scenario("skyhook-optimised", plant, norm, tuple(k_fb))
     result = simulate(course_input(paper_course(speed_kmh), scenario), scenario)

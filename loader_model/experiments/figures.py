@@ -3,8 +3,8 @@
 - Fig. 10: spectra (|FFT| of the free response) of the chassis accelerations f_Hx, f_Hy
   (accelerometer at H) and θ̈1 over one board at 17 km/h, empty bucket, baseline, with Table 1's
   frequencies marked.
-- Fig. 13: seat vertical acceleration f_Sy − g over one board at 9 km/h, empty bucket, with and
-  without the Table 3 skyhook.
+- Fig. 13: seat vertical acceleration f_Py − g (the seat pad under the occupant, as section 5.3
+  measured) over one board at 9 km/h, empty bucket, with and without the Table 3 skyhook.
 - Fig. 14: mean a_total per condition and controller with 95 % Student-t intervals.
 """
 
@@ -48,7 +48,7 @@ def plot_fig13(path: Path) -> Path:
     figure, axis = plt.subplots(figsize=(7.5, 3.8))
     for controller, style in (("baseline", "-"), ("skyhook", "--")):
         result = single_obstacle_run(controller, 9.0, settle_s=2.0)
-        f_sy = result["f_Sy"]
+        f_sy = result["f_Py"]
         axis.plot(result.time_s, f_sy - f_sy[0], style, lw=1.0, label=controller)
     moving = np.flatnonzero(np.abs(f_sy - f_sy[0]) > 1e-3)
     if moving.size:

@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 if TYPE_CHECKING:
+    from loader_model.plant.plant_parameters import PlantOptions
     from loader_model.plant.scenario import PlantScenario
     from loader_model.simulation.scenario import Scenario
 
@@ -208,19 +209,20 @@ def trial_specs(
     return specs
 
 
-_PLANTS: dict[tuple[str, bool], PlantScenario] = {}
+_PLANTS: dict[tuple[str, PlantOptions], PlantScenario] = {}
 _SCENARIOS: dict[tuple[str, str, tuple[float, ...] | None], Scenario] = {}
 
 
-def plant_scenario(load: str, accumulator: bool) -> PlantScenario:
-    """The experiment's plant per load and accumulator (the shipped loader), resolved once per
-    process (:func:`~loader_model.plant.scenario.resolve_plant`)."""
+def plant_scenario(load: str, controller: str) -> PlantScenario:
+    """The experiment's plant per load and the circuit ``controller`` runs on
+    (:meth:`~loader_model.plant.plant_parameters.PlantOptions.for_controller`; the shipped
+    loader), resolved once per process (:func:`~loader_model.plant.scenario.resolve_plant`)."""
     from loader_model.plant.plant_parameters import PlantOptions
     from loader_model.plant.scenario import resolve_plant
 
-    key = (load, bool(accumulator))
+    key = (load, PlantOptions.for_controller(controller))
     if key not in _PLANTS:
-        _PLANTS[key] = resolve_plant(None, load, PlantOptions(accumulator=bool(accumulator)))
+        _PLANTS[key] = resolve_plant(None, load, key[1])
     return _PLANTS[key]
 
 
@@ -277,8 +279,8 @@ def controller_arguments(
 
 
 def plant_for(controller: str, load: str) -> np.ndarray:
-    """Plant parameters of ``load`` with the accumulator connected only for ``passive``."""
-    return plant_scenario(load, controller == "passive").params
+    """Plant parameters of ``load`` on the circuit of ``controller`` (:func:`plant_scenario`)."""
+    return plant_scenario(load, controller).params
 
 
 def trial_scenario(controller: str, load: str, k_fb: tuple[float, ...] | None = None) -> Scenario:
@@ -287,7 +289,7 @@ def trial_scenario(controller: str, load: str, k_fb: tuple[float, ...] | None = 
     equilibrium and the controller's fixed point (a matrix logarithm)."""
     key = (controller, load, None if k_fb is None else tuple(float(k) for k in k_fb))
     if key not in _SCENARIOS:
-        plant = plant_scenario(load, controller == "passive")
+        plant = plant_scenario(load, controller)
         norm = plant.load.pressure_normalisation
         _SCENARIOS[key] = controller_scenario(controller, plant, norm, key[2])
     return _SCENARIOS[key]

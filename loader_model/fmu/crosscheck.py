@@ -13,8 +13,8 @@ restarts CVode (a plain table is only applied at communication points while CVod
 steps across them: that blurred the input's timing and left errors near 1 % at any tolerance);
 the reference integrates the plant with CasADi's cvodes interval by interval, on states scaled
 by their nominal values, at a tight tolerance. Errors are reported relative to each signal's
-largest excursion from its static value (stricter than relative to its peak, as f_Sy and p_A sit
-on a large static value).
+largest excursion from its static value (stricter than relative to its peak, as f_Py, f_Sy and
+p_A sit on a large static value).
 """
 
 from __future__ import annotations
@@ -31,8 +31,8 @@ from loader_model.plant.plant import EXOGENOUS_NAMES, INPUT_NAMES, OUTPUT_NAMES,
 
 __all__ = ["CrossCheck", "bump_input", "cross_check", "reference_response"]
 
-#: Signals compared (seat accelerometer and pressures, the issue's acceptance signals) and more.
-COMPARED = ("f_Sx", "f_Sy", "p_A", "p_B", "phi", "yd_H", "thetad_1")
+#: Signals compared (seat pad and chassis at S, pressures: the acceptance signals) and more.
+COMPARED = ("f_Px", "f_Py", "f_Sx", "f_Sy", "p_A", "p_B", "phi", "yd_H", "thetad_1")
 
 
 @dataclass(frozen=True)

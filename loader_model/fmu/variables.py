@@ -25,6 +25,7 @@ import loader_model_generated as generated
 from loader_model.plant.plant import EXOGENOUS_NAMES, INPUT_NAMES, OUTPUT_NAMES, STATE_NAMES
 from loader_model.plant.plant_parameters import (
     HYDRAULIC_PARAMETERS,
+    OCCUPANT_PARAMETERS,
     PLANT_PARAMETER_NAMES,
     PLANT_PARAMETER_UNITS,
 )
@@ -66,6 +67,8 @@ _STATE_UNITS = {
     "V_p": "m^3/rev",
     "Vd_p": "m^3/(rev*s)",
     "V_acc": "m^3",
+    **{name: "m" for name in ("u_Px", "u_Ox", "u_Py", "u_Oy")},
+    **{name: "m/s" for name in ("ud_Px", "ud_Ox", "ud_Py", "ud_Oy")},
 }
 _STATE_DESCRIPTIONS = {
     "x_H": "chassis centre of gravity H, forward, from static equilibrium",
@@ -79,6 +82,10 @@ _STATE_DESCRIPTIONS = {
     "V_p": "pump displacement (Fig. 9)",
     "Vd_p": "rate of the pump displacement (Fig. 9)",
     "V_acc": "oil volume in the accumulator(s)",
+    "u_Px": "seat pad relative to S, forward, from the static deflection",
+    "u_Ox": "occupant's moving mass relative to S, forward, from the static deflection",
+    "u_Py": "seat pad relative to S, up, from the static deflection",
+    "u_Oy": "occupant's moving mass relative to S, up, from the static deflection",
 }
 #: Smallest nominal magnitude of each state (absolute tolerance = relative tolerance × nominal).
 _NOMINAL_FLOOR = {"m": 1e-3, "rad": 1e-3, "m/s": 1e-2, "rad/s": 1e-2, "Pa": 1e5}
@@ -90,8 +97,8 @@ _OUTPUTS = {
     "f_Hx": ("m/s^2", "specific force at H, forward (accelerometer, gravity included)"),
     "f_Hy": ("m/s^2", "specific force at H, up (accelerometer, gravity included)"),
     "f_Ny": ("m/s^2", "specific force at the forward sensor point N, up"),
-    "f_Sx": ("m/s^2", "seat accelerometer S, forward (gravity included)"),
-    "f_Sy": ("m/s^2", "seat accelerometer S, up (gravity included)"),
+    "f_Sx": ("m/s^2", "specific force of the chassis at the seat base S, forward"),
+    "f_Sy": ("m/s^2", "specific force of the chassis at the seat base S, up"),
     "thetadd_1": ("rad/s^2", "chassis pitch acceleration"),
     "p_A": ("Pa", "piston-side pressure, gauge"),
     "p_B": ("Pa", "rod-side pressure, gauge"),
@@ -102,6 +109,8 @@ _OUTPUTS = {
     "F_Ay": ("N", "vertical tyre force at the front axle"),
     "F_By": ("N", "vertical tyre force at the rear axle"),
     "p_acc": ("Pa", "accumulator gas pressure, gauge"),
+    "f_Px": ("m/s^2", "seat pad under the occupant, forward (gravity included, section 5.3)"),
+    "f_Py": ("m/s^2", "seat pad under the occupant, up (gravity included, section 5.3)"),
 }
 
 
@@ -142,7 +151,7 @@ def _unit(unit: str) -> str:
 
 
 def _parameter_description(name: str) -> str:
-    hydraulic = {item[0]: item[2] for item in HYDRAULIC_PARAMETERS}
+    hydraulic = {item[0]: item[2] for item in HYDRAULIC_PARAMETERS + OCCUPANT_PARAMETERS}
     return generated.PARAMETER_DESCRIPTIONS.get(name) or hydraulic[name]
 
 

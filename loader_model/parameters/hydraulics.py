@@ -146,7 +146,12 @@ class HydraulicParameters(TypedLeaves):
 
 @dataclass(frozen=True)
 class LeakageParameters(TypedLeaves):
-    """Internal seal leakage Q_L = k_Lp (p_A − p_B) − k_Lv ẋ_act (Eq. 47, Table 5).
+    """Leakage: Table 5's regression flow and the cylinders' own piston-seal leakage.
+
+    Q_L = k_Lp (p_A − p_B) − k_Lv ẋ_act (Eq. 47, Table 5) is the pump-side flow of the
+    regression of Eq. 48 while the pump holds the boom through open load-holding valves
+    (DESIGN.md errata 11; :mod:`loader_model.plant.circuit`); behind closed valves only the
+    piston seal's cross-port leakage Q_seal = n k_seal (p_A − p_B) acts.
 
     Attributes
     ----------
@@ -154,6 +159,8 @@ class LeakageParameters(TypedLeaves):
         Pressure coefficient k_Lp in m³/(s·Pa).
     k_lv : float
         Velocity coefficient k_Lv in m²; identified negative (−5.0e-4 m²), so any finite value.
+    k_seal : float
+        Piston-seal cross-port leakage coefficient per cylinder in m³/(s·Pa).
     """
 
     k_lp: float = field(
@@ -169,6 +176,17 @@ class LeakageParameters(TypedLeaves):
                 -0.02,
                 0.02,
                 reason="at most a sixth of the area of the largest bore (0.4 m: 0.126 m^2) either way",
+            ),
+        )
+    )
+    k_seal: float = field(
+        metadata=si(
+            "m^3/(s Pa)",
+            Range(
+                0.0,
+                1e-12,
+                reason="a leak-free elastomer seal (0) to a worn one: 50 mm/min drift of a "
+                "63 mm bore at 150 bar is 2.6e-13",
             ),
         )
     )

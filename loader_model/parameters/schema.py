@@ -51,6 +51,7 @@ from loader_model.parameters.hydraulics import (
     LeakageParameters,
     PumpParameters,
 )
+from loader_model.parameters.seat import SeatParameters
 
 __all__ = [
     "AccumulatorParameters",
@@ -68,6 +69,7 @@ __all__ = [
     "LoaderParameters",
     "Point",
     "PumpParameters",
+    "SeatParameters",
     "TyreParameters",
     "unit_of",
 ]
@@ -326,4 +328,5 @@ class LoaderParameters(Sourced):
     controller: ControllerParameters
     accumulator: AccumulatorParameters
     environment: EnvironmentParameters
+    seat: SeatParameters
     sources: tuple[tuple[str, str], ...] = sources_field()

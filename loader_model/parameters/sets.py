@@ -47,6 +47,7 @@ from loader_model.parameters.schema import (
     LoaderParameters,
     Point,
     PumpParameters,
+    SeatParameters,
     TyreParameters,
 )
 from loader_model.parameters.toml_format import build, dumps, iter_leaves, leaf_metadata, to_raw
@@ -70,6 +71,7 @@ __all__ = [
     "LeakageParameters",
     "LoaderParameters",
     "PumpParameters",
+    "SeatParameters",
     "TyreParameters",
     "bucket_load",
     "combine_bodies",

@@ -26,6 +26,12 @@ so (all flows totals over the cylinders):
   leakage Q_L (π_A − π_B) (Eq. 47, 48), orifice π_A q_acc − p_acc V̇_acc, low-side and check valves
   (π_c − π) Q, relief π_A Q_relief (to the tank at 0 gauge).
 
+The seated occupant (:mod:`loader_model.plant.occupant`) is outside the balance: its relative
+motion is driven by the chassis's acceleration at S (a base excitation, not a closed
+conservative system) and its reaction on the chassis is neglected (a 55 kg seated mass on a
+3.5 t machine), so E, the inputs and the losses are those of the loader without the occupant,
+and the occupant's states enter none of them.
+
 Two losses are not sign-definite, because the plant's laws are not: leakage's k_Lv ẋ term (Eq. 48)
 moves oil against the pressure without a force on the piston, and the orifice feeds an
 accumulator whose oil is incompressible at ρ0 while the chamber's is not, so for

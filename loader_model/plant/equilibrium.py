@@ -9,10 +9,16 @@ follow in closed form (totals over the n cylinders; friction and end stops vanis
     p_{B0} = p_c, \qquad p_{A0} = \frac{F_{act0} + n \alpha A_p p_c}{n A_p}, \qquad
     V_{p0} = \frac{Q_{L0}}{n_{pump}} = \frac{k_{Lp} (p_{A0} - p_{B0})}{n_{pump}}
 
-(the pump holds the boom against the leakage, so the rod side needs no charge flow; with the
-pump switched off or the valves shut the chambers are closed and V_p0 = 0), and the accumulator
+(through open load-holding valves the pump holds the boom against Table 5's pump-side flow,
+so the rod side needs no charge flow; with the pump switched off, the valves shut or the
+load-holding valves closed, V_p0 = 0: :mod:`loader_model.plant.circuit`), and the accumulator
 holds the oil volume at which its gas pressure equals p_A0 (inverse of the polytropic law), so
-no oil flows through its orifice.
+no oil flows through its orifice. The occupant's states are zero (measured from the static
+deflection, :mod:`loader_model.plant.occupant`).
+
+Behind closed load-holding valves the state is static up to the piston seals' leakage: the boom
+drifts at ẋ_cyl = −Q_seal / (n A_p), about 0.014 mm/min with the default seals, so x0 is the
+quasi-static state (ṗ_A(x0) = −K_oil Q_seal / V_A; exact with the leakage switched off).
 """
 
 from __future__ import annotations
@@ -24,6 +30,7 @@ import numpy as np
 
 import loader_model_generated as generated
 from loader_model.plant.components import ATMOSPHERIC_PRESSURE_PA
+from loader_model.plant.occupant import OCCUPANT_STATE_NAMES
 from loader_model.plant.plant import STATE_NAMES
 from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
 from loader_model.vehicle.cylinder import static_piston_pressure
@@ -39,7 +46,7 @@ def _build(symbol: type = ca.SX) -> ca.Function:
     _, force = generated.function("complete_parameters")(params[:_N_MECH])
     p_b = theta["p_charge"]
     p_a = static_piston_pressure(force, theta["n_cyl"], theta["d_piston"], theta["d_rod"], p_b)
-    holding = theta["pump_on"] * theta["valves_on"] * theta["leakage_on"]
+    holding = theta["pump_on"] * theta["valves_on"] * theta["leakage_on"] * theta["holding_open"]
     v_p = holding * theta["k_Lp"] * (p_a - p_b) / theta["n_pump"]
     gas = theta["n_acc"] * theta["V_0"]
     absolute_0 = theta["p_0"] + ATMOSPHERIC_PRESSURE_PA
@@ -48,7 +55,7 @@ def _build(symbol: type = ca.SX) -> ca.Function:
     empty = (p_a - theta["p_0"]) / (theta["n_poly"] * absolute_0 / gas)
     v_acc = ca.if_else(p_a >= theta["p_0"], filled, empty)
     zeros = symbol.zeros(10)
-    state = ca.vertcat(zeros, p_a, p_b, v_p, 0, v_acc)
+    state = ca.vertcat(zeros, p_a, p_b, v_p, 0, v_acc, symbol.zeros(len(OCCUPANT_STATE_NAMES)))
     return ca.Function(
         "plant_equilibrium",
         [params],

@@ -10,7 +10,10 @@ at any operating point (default: the static equilibrium of
 ``StateSpace``. The tyre anchors ξ have ξ̇ = 0 while the tyres stick, so at rest they are pure
 integrators that nothing drives and that drive the loader only through their initial value;
 :meth:`PlantLinearisation.state_space` drops them by default (exact for ξ(0) = 0), together with
-the accumulator's oil volume when the accumulator is switched off.
+the accumulator's oil volume when the accumulator is switched off and the occupant's states when
+the occupant is (:mod:`loader_model.plant.occupant`: the chassis drives the occupant and the
+pad outputs f_Px, f_Py, never the other way round, so the loader's part of A is the same either
+way).
 
 :func:`undamped_matrices_from_plant` gives M and K of Eq. 27 from the same linearisation with the
 chambers closed (Eq. 28): the closed chambers' pressures are integrals of the cylinder motion,
@@ -29,6 +32,7 @@ import casadi as ca
 import numpy as np
 
 from loader_model.plant.equilibrium import static_state
+from loader_model.plant.occupant import OCCUPANT_STATE_NAMES
 from loader_model.plant.plant import (
     EXOGENOUS_NAMES,
     INPUT_NAMES,
@@ -77,8 +81,10 @@ class PlantLinearisation:
     ) -> Any:
         """python-control ``StateSpace`` with named states, inputs (V_p_ref, then w) and outputs.
 
-        ``drop`` names states to remove (default: the tyre anchors, and the accumulator's oil
-        volume when its row and column are zero, i.e. the accumulator is off).
+        ``drop`` names states to remove (default: the tyre anchors, the accumulator's oil
+        volume when its row and column are zero, i.e. the accumulator is off, and the
+        occupant's states when nothing drives them and no output reads them, i.e. the occupant
+        is off: they are then uncontrollable and unobservable).
         """
         import control
 
@@ -87,6 +93,16 @@ class PlantLinearisation:
             index = STATE_NAMES.index("V_acc")
             if not self.A[index].any() and not self.A[:, index].any():
                 drop = (*drop, "V_acc")
+            occupant = [STATE_NAMES.index(n) for n in OCCUPANT_STATE_NAMES]
+            rest = [i for i in range(len(STATE_NAMES)) if i not in occupant]
+            inert = not (
+                self.A[np.ix_(occupant, rest)].any()
+                or self.B[occupant].any()
+                or self.E[occupant].any()
+                or self.C[:, occupant].any()
+            )
+            if inert:
+                drop = (*drop, *OCCUPANT_STATE_NAMES)
         unknown = sorted(set(drop) - set(STATE_NAMES))
         if unknown:
             raise ValueError(f"drop: unknown states {unknown}; allowed: {list(STATE_NAMES)}")

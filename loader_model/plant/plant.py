@@ -4,28 +4,35 @@ r"""The plant: generated multibody model + lift cylinders + pump + valves + accu
 
 State x (:data:`STATE_NAMES`): the coordinates p and rates ṗ (Eq. 26), the tyre anchors ξ
 (``derive/contact.py``), the chamber pressures p_A, p_B (gauge, Pa; Eq. 36, 37), the pump
-displacement V_p and its rate (Fig. 9) and the oil volume in the accumulator. Input u: the pump
+displacement V_p and its rate (Fig. 9), the oil volume in the accumulator, then the seated
+occupant's states on the seat cushion at S (:mod:`loader_model.plant.occupant`, appended so the
+earlier indices stay). Input u: the pump
 displacement command V_p,ref [m³/rev]. Exogenous w: road displacement and rate under each axle,
 disturbance forces at H (Eq. 5-7). Parameters θ: :data:`~loader_model.plant.plant_parameters.
 PLANT_PARAMETER_NAMES` (mechanical, then hydraulic, then switches); the static tyre loads are
 completed inside the graph (generated ``complete_parameters``), so a varied θ stays consistent.
 
 The drive (Fig. 8, section 2.4): ``n_cyl`` single-rod cylinders in parallel, all quantities below
-are totals over them. The pump moves oil from the rod-side line to the piston-side line,
+are totals over them. Through open load-holding valves (h = 1) the pump moves oil from the
+rod-side line to the piston-side line; closed (h = 0), the cylinders and the accumulator are
+sealed from the pump's circuit (:mod:`loader_model.plant.circuit`):
 
 .. math::
 
-    \dot p_A &= \frac{K_{oil}}{V_A}\left(Q_p + Q_{check} - Q_{relief} - Q_{acc}
-               - A_p \dot x_{cyl} - Q_L\right) \quad \text{(Eq. 36)} \\
-    \dot p_B &= \frac{K_{oil}}{V_B}\left(-Q_p + Q_{charge} + \alpha A_p \dot x_{cyl} + Q_L\right)
-               \quad \text{(Eq. 37)} \\
+    \dot p_A &= \frac{K_{oil}}{V_A}\left(h (Q_p - Q_L) + Q_{check} - Q_{relief} - Q_{seal}
+               - Q_{acc} - A_p \dot x_{cyl}\right) \quad \text{(Eq. 36)} \\
+    \dot p_B &= \frac{K_{oil}}{V_B}\left(-h Q_p + Q_{charge} + h Q_L + Q_{seal}
+               + \alpha A_p \dot x_{cyl}\right) \quad \text{(Eq. 37)} \\
     F_{act} &= A_p (p_A - \alpha p_B) - F_f + F_{end} \quad \text{(Eq. 31)}
 
 with Q_p = n V_p (V_p saturated at ±V_p,max), the rod side tied to the charge line by the
 low-side valve Q_charge = G_charge (p_c − p_B) (the rod side is the low side while the boom
-carries its weight), an anti-cavitation check valve from the charge line into the piston side,
-a relief valve on the piston side, leakage Q_L (Eq. 47 with Eq. 48's sign), seal friction F_f
-(Eq. 46, errata 10 reading), end stops, and the accumulator through its orifice. The pump's
+carries its weight), an anti-cavitation check valve from the charge line into the piston side
+(through the load-holding valve's check), a port relief valve on the piston side, Table 5's
+pump-side regression flow Q_L (Eq. 47 with Eq. 48's sign; DESIGN.md errata 11), the piston
+seals' leakage Q_seal = n k_seal (p_A − p_B) behind closed valves, seal friction F_f (Eq. 46,
+errata 10 reading), end stops, and the accumulator through its orifice (between the valves and
+the cylinder). The pump's
 displacement loop is the second-order system of Fig. 9 with its command saturated at ±V_p,max
 and its rate limited to ±V̇_p,max (Table 2, errata 8), each by the C¹ saturation of
 :mod:`loader_model.plant.components` (exact below 99 % of the limit).
@@ -40,6 +47,8 @@ import casadi as ca
 
 import loader_model_generated as generated
 from loader_model.plant import components as hyd
+from loader_model.plant.circuit import circuit_flows
+from loader_model.plant.occupant import OCCUPANT_STATE_NAMES, occupant_dynamics
 from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
 
 __all__ = [
@@ -62,6 +71,7 @@ STATE_NAMES: tuple[str, ...] = (
     "V_p",
     "Vd_p",
     "V_acc",
+    *OCCUPANT_STATE_NAMES,
 )
 INPUT_NAMES: tuple[str, ...] = ("V_p_ref",)
 EXOGENOUS_NAMES: tuple[str, ...] = generated.EXOGENOUS_NAMES
@@ -85,9 +95,12 @@ OUTPUT_NAMES: tuple[str, ...] = (
     "F_Ay",
     "F_By",
     "p_acc",
+    "f_Px",
+    "f_Py",
 )
 
 _N_MECH = len(generated.PARAMETER_NAMES)
+_N_HYD = STATE_NAMES.index(OCCUPANT_STATE_NAMES[0])  # the states before the occupant's
 _SATURATION_BAND = 0.01  # C¹ saturations are exact below 99 % of their limit
 
 
@@ -116,9 +129,6 @@ def hydraulic_drive(x: Any, u: Any, theta: dict[str, Any], completed: Any) -> di
     v_a, v_b = hyd.chamber_volumes(
         position, piston, annulus, theta["stroke"], theta["V_dead_A"], theta["V_dead_B"]
     )
-    leakage = theta["leakage_on"] * hyd.leakage_flow(
-        theta["k_Lp"], theta["k_Lv"], p_a, p_b, velocity
-    )
     friction = theta["friction_on"] * hyd.seal_friction(
         theta["f_s"], theta["tau_s"], theta["gamma_f"], theta["f_C"], theta["f_v"], p_a, velocity
     )
@@ -128,11 +138,7 @@ def hydraulic_drive(x: Any, u: Any, theta: dict[str, Any], completed: Any) -> di
     force = n * (piston * p_a - annulus * p_b) - friction + end_stop
     v_max, vd_max = theta["V_p_max"], theta["Vd_p_max"]
     displacement = hyd.saturate(v_p, v_max, _SATURATION_BAND * v_max)
-    pump_flow = theta["pump_on"] * theta["n_pump"] * displacement
-    valves = theta["valves_on"]
-    charge = valves * theta["G_charge"] * (theta["p_charge"] - p_b)
-    check = valves * theta["G_check"] * hyd.ramp(theta["p_charge"] - p_a, 1e4)
-    relief = valves * theta["G_relief"] * hyd.ramp(p_a - theta["p_relief"], 1e5)
+    flows = circuit_flows(theta, p_a, p_b, velocity, displacement)
     p_acc = hyd.accumulator_gas_pressure(
         theta["p_0"], theta["n_acc"] * theta["V_0"], theta["n_poly"], v_acc
     )
@@ -144,11 +150,16 @@ def hydraulic_drive(x: Any, u: Any, theta: dict[str, Any], completed: Any) -> di
         )
     )
     k_oil = theta["K_oil"]
+    pump_flow, leakage = flows["pump_flow"], flows["leakage"]
+    # summed in the order of before the circuit states, so that open valves give the same
+    # floating-point rates (a lift-off trial can turn on a rounding difference)
     dp_a = hyd.chamber_pressure_rate(
-        k_oil, n * v_a, pump_flow + check - relief - q_acc - n * piston * velocity - leakage
+        k_oil,
+        n * v_a,
+        pump_flow + flows["check"] - flows["relief"] - q_acc - n * piston * velocity - leakage,
     )
     dp_b = hyd.chamber_pressure_rate(
-        k_oil, n * v_b, -pump_flow + charge + n * annulus * velocity + leakage
+        k_oil, n * v_b, -pump_flow + flows["charge"] + n * annulus * velocity + leakage
     )
     command = hyd.saturate(u, v_max, _SATURATION_BAND * v_max)
     rate = hyd.saturate(vd_p, vd_max, _SATURATION_BAND * vd_max)
@@ -165,11 +176,11 @@ def hydraulic_drive(x: Any, u: Any, theta: dict[str, Any], completed: Any) -> di
         "velocity": velocity,
         "V_A": n * v_a,
         "V_B": n * v_b,
-        "pump_flow": pump_flow,
-        "charge": charge,
-        "check": check,
-        "relief": relief,
-        "leakage": leakage,
+        "pump_flow": flows["pump_flow"],
+        "charge": flows["charge"],
+        "check": flows["check"],
+        "relief": flows["relief"],
+        "leakage": flows["leakage"],
         "q_acc": q_acc,
         "accumulator_rate": accumulator_rate,
         "friction": friction,
@@ -199,8 +210,9 @@ def build_plant(symbol: type = ca.SX) -> ca.Function:
     pdd, anchor_rate = generated.function("forward_dynamics")(
         p, pd, anchor, drive["force"], road, road_rate, disturbance, completed
     )
-    xdot = ca.vertcat(pd, pdd, anchor_rate, drive["rates"])
     f_h, f_n, f_s = generated.function("specific_forces")(p, pd, pdd, completed)
+    occupant_rate, pad = occupant_dynamics(x[_N_HYD:], f_s, theta)
+    xdot = ca.vertcat(pd, pdd, anchor_rate, drive["rates"], occupant_rate)
     tyres = generated.function("tyre_contact")(p, pd, anchor, road, road_rate, completed)[0]
     y = ca.vertcat(
         pd[0],
@@ -222,6 +234,7 @@ def build_plant(symbol: type = ca.SX) -> ca.Function:
         tyres[1],
         tyres[3],
         drive["p_acc"],
+        pad,
     )
     return ca.Function(
         "plant", [x, u, w, params], [xdot, y], ["x", "u", "w", "params"], ["xdot", "y"]

@@ -1,4 +1,4 @@
-"""The plant's parameter vector: the generated model's parameters, then the hydraulic drive's.
+"""The plant's parameter vector: the generated model's, the hydraulic drive's, the occupant's.
 
 One parameter flow: :func:`plant_parameter_vector` fills the whole vector from the parameter files
 (loader and bucket load) and the :class:`PlantOptions` switches; the plant Function takes it as
@@ -9,15 +9,18 @@ Function's input. Switches are parameters too (0 or 1), so one compiled plant se
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 
 import loader_model_generated as generated
+from loader_model.plant.occupant import OCCUPANT_PARAMETERS
 
 __all__ = [
     "HYDRAULIC_PARAMETERS",
+    "IDLE_PUMP_CONTROLLERS",
+    "OCCUPANT_PARAMETERS",
     "PLANT_PARAMETER_NAMES",
     "PLANT_PARAMETER_UNITS",
     "PlantOptions",
@@ -42,8 +45,9 @@ HYDRAULIC_PARAMETERS: tuple[tuple[str, str, str], ...] = (
     ("G_check", "m^3/(s*Pa)", "conductance of the piston side's anti-cavitation check valve"),
     ("p_relief", "Pa", "setting of the piston side's pressure relief valve, gauge"),
     ("G_relief", "m^3/(s*Pa)", "conductance of the relief valve above its setting"),
-    ("k_Lp", "m^3/(s*Pa)", "leakage pressure coefficient (Eq. 47, Table 5)"),
-    ("k_Lv", "m^2", "leakage velocity coefficient (Eq. 48 sign, Table 5)"),
+    ("k_Lp", "m^3/(s*Pa)", "pump-side regression flow, pressure coefficient (Eq. 47, Table 5)"),
+    ("k_Lv", "m^2", "pump-side regression flow, velocity coefficient (Eq. 48 sign, Table 5)"),
+    ("k_seal", "m^3/(s*Pa)", "piston-seal cross-port leakage per cylinder (valves closed)"),
     ("f_s", "N", "static friction (Eq. 46, Table 4)"),
     ("tau_s", "s/m", "Stribeck decay (Eq. 46)"),
     ("gamma_f", "s/m", "tanh slope (Eq. 46)"),
@@ -63,27 +67,38 @@ HYDRAULIC_PARAMETERS: tuple[tuple[str, str, str], ...] = (
     ("dp_laminar", "Pa", "pressure drop of the orifice's laminar-turbulent transition"),
     ("pump_on", "-", "1: pump flow acts; 0: pump at zero displacement (Eq. 28)"),
     ("valves_on", "-", "1: charge, check and relief valves act; 0: all shut (Eq. 28)"),
-    ("leakage_on", "-", "1: internal leakage acts; 0: none"),
+    ("leakage_on", "-", "1: leakage acts (Table 5's flow or the seal's); 0: none"),
     ("friction_on", "-", "1: seal friction acts; 0: none"),
     ("accumulator_on", "-", "1: accumulator connected (passive ride control); 0: shut off"),
+    ("holding_open", "-", "1: load-holding valves open (pump circuit); 0: closed (sealed)"),
 )
 
 PLANT_PARAMETER_NAMES: tuple[str, ...] = generated.PARAMETER_NAMES + tuple(
-    name for name, _, _ in HYDRAULIC_PARAMETERS
+    name for name, _, _ in HYDRAULIC_PARAMETERS + OCCUPANT_PARAMETERS
 )
 PLANT_PARAMETER_UNITS: dict[str, str] = dict(generated.PARAMETER_UNITS) | {
-    name: unit for name, unit, _ in HYDRAULIC_PARAMETERS
+    name: unit for name, unit, _ in HYDRAULIC_PARAMETERS + OCCUPANT_PARAMETERS
 }
+#: Controllers that leave the pump idle: the boom sits on closed load-holding valves
+#: (DESIGN.md, Controllers; errata 11). Every other controller drives the pump through them.
+IDLE_PUMP_CONTROLLERS: tuple[str, ...] = ("baseline", "passive")
 
 
 @dataclass(frozen=True)
 class PlantOptions:
-    """Switches of the hydraulic drive (paper Eq. 28 closes the chambers: all off).
+    """Switches of the plant (paper Eq. 28 closes the chambers: all hydraulic parts off).
 
     Attributes
     ----------
     pump, valves, leakage, friction, accumulator : bool
         Whether each part acts. ``closed()`` gives the chambers-closed setting of Eq. 28.
+    holding : bool
+        Load-holding valves open (the pump's circuit reaches the cylinders, Table 5's flow
+        acts) or closed (the cylinders and the accumulator sealed from the pump, only the
+        piston seals leak): :mod:`loader_model.plant.circuit`.
+    occupant : bool
+        The seated occupant on the cushion at S (:mod:`loader_model.plant.occupant`); off: the
+        pad outputs equal the chassis's f_S.
     """
 
     pump: bool = True
@@ -91,11 +106,46 @@ class PlantOptions:
     leakage: bool = True
     friction: bool = True
     accumulator: bool = False
+    holding: bool = True
+    occupant: bool = True
 
     @classmethod
     def closed(cls) -> PlantOptions:
         """Both chambers closed: pump at zero displacement, valves shut, no leakage or friction."""
-        return cls(pump=False, valves=False, leakage=False, friction=False, accumulator=False)
+        return cls(
+            pump=False,
+            valves=False,
+            leakage=False,
+            friction=False,
+            accumulator=False,
+            holding=False,
+        )
+
+    @classmethod
+    def for_controller(cls, controller: str, *, occupant: bool = True) -> PlantOptions:
+        """The circuit a ride controller runs on (DESIGN.md, Controllers; errata 11).
+
+        ``baseline`` and ``passive`` (:data:`IDLE_PUMP_CONTROLLERS`) leave the pump idle: the
+        boom sits on closed load-holding valves, ``passive`` with the accumulator connected
+        between valves and cylinder. Every other controller (``virtual-accumulator``,
+        ``skyhook`` and the designed skyhook gains; ``_`` or ``-`` alike) drives the pump
+        through open valves, accumulator shut.
+
+        Raises
+        ------
+        ValueError
+            If ``controller`` is not a non-empty string.
+        """
+        return cls(occupant=bool(occupant)).with_controller(controller)
+
+    def with_controller(self, controller: str) -> PlantOptions:
+        """These switches with the circuit of ``controller`` (:meth:`for_controller`): the
+        load-holding valves and the accumulator set, every other switch kept."""
+        if not isinstance(controller, str) or not controller:
+            raise ValueError(f"controller must be a non-empty name; got {controller!r}")
+        name = controller.replace("_", "-")
+        idle = name in IDLE_PUMP_CONTROLLERS
+        return replace(self, accumulator=name == "passive", holding=not idle)
 
     def switches(self) -> dict[str, float]:
         """The switch entries of the parameter vector (0.0 or 1.0), by parameter name."""
@@ -105,6 +155,8 @@ class PlantOptions:
             "leakage_on": float(self.leakage),
             "friction_on": float(self.friction),
             "accumulator_on": float(self.accumulator),
+            "holding_open": float(self.holding),
+            "occupant_on": float(self.occupant),
         }
 
 
@@ -120,7 +172,8 @@ def plant_parameter_vector(
         :class:`loader_model.parameters.sets.BucketLoad` (or what
         :func:`loader_model.vehicle.statics.resolve_machine` accepts).
     options : PlantOptions, optional
-        Switches; default: pump, valves, leakage and friction on, accumulator off.
+        Switches; default: pump, valves, leakage and friction on, load-holding valves open,
+        accumulator off, occupant on (:meth:`PlantOptions.for_controller` per controller).
     check : bool
         Check the loader and load together at the static equilibrium first
         (:func:`loader_model.vehicle.statics.check_combination`).
@@ -138,7 +191,7 @@ def plant_parameter_vector(
         statics.check_combination(loader, load)
     mechanical = parameters.model_parameter_values(loader, load)
     cyl, hyd, leak, fric = loader.cylinders, loader.hydraulics, loader.leakage, loader.friction
-    pump, acc = loader.pump, loader.accumulator
+    pump, acc, seat = loader.pump, loader.accumulator, loader.seat
     values = mechanical | {
         "F_Ay0": 0.0,
         "F_By0": 0.0,
@@ -160,6 +213,7 @@ def plant_parameter_vector(
         "G_relief": hyd.relief_conductance,
         "k_Lp": leak.k_lp,
         "k_Lv": leak.k_lv,
+        "k_seal": leak.k_seal,
         "f_s": fric.f_s,
         "tau_s": fric.tau_s,
         "gamma_f": fric.gamma,
@@ -177,6 +231,18 @@ def plant_parameter_vector(
         "d_orifice": acc.orifice_diameter,
         "C_d": acc.discharge_coefficient,
         "dp_laminar": acc.laminar_transition_pressure,
+        "m_seated": seat.seated_mass,
+        "m_pad": seat.pad_mass,
+        "r_occ_x": seat.fore_aft_rigid_fraction,
+        "f_occ_x": seat.fore_aft_frequency,
+        "zeta_occ_x": seat.fore_aft_damping_ratio,
+        "k_cush_x": seat.cushion_stiffness_x,
+        "c_cush_x": seat.cushion_damping_x,
+        "r_occ_y": seat.vertical_rigid_fraction,
+        "f_occ_y": seat.vertical_frequency,
+        "zeta_occ_y": seat.vertical_damping_ratio,
+        "k_cush_y": seat.cushion_stiffness_y,
+        "c_cush_y": seat.cushion_damping_y,
     }
     values |= options.switches()
     return np.array([float(values[name]) for name in PLANT_PARAMETER_NAMES])

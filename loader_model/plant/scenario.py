@@ -60,7 +60,8 @@ class PlantScenario:
         Static state (:data:`~loader_model.plant.plant.STATE_NAMES`, module
         :mod:`~loader_model.plant.equilibrium`).
     u0 : float
-        Pump command V_p0 that holds the boom against the leakage, m³/rev.
+        Pump command V_p0 that holds the boom against Table 5's pump-side flow (0 behind closed
+        load-holding valves), m³/rev.
     y0 : numpy.ndarray
         Plant outputs (:data:`~loader_model.plant.plant.OUTPUT_NAMES`) at (x0, u0) without road
         input or disturbance.
@@ -156,7 +157,9 @@ def resolve_plant(
     load : BucketLoad, str or Path
         A bucket load, the path of its TOML file, or a shipped case (``"empty"``, ``"full"``).
     options : PlantOptions, optional
-        Circuit switches; default: pump, valves, leakage and friction on, accumulator shut.
+        Circuit switches; default: pump, valves, leakage and friction on, load-holding valves
+        open, accumulator shut, occupant on (``PlantOptions.for_controller`` gives a
+        controller's circuit).
 
     Returns
     -------

@@ -114,13 +114,15 @@ def _run(
     """Simulate controller ``name`` on one plant; ``load`` is (case, pressure norm ‖p_A‖ in Pa),
     ``errors`` the sensors' gains and offsets (:func:`~loader_model.robustness.sensors.sensor_errors`),
     ``sensors`` their noise (:func:`~loader_model.robustness.sensors.sensor_model`). The plant's
-    equilibrium is taken from ``plant``; ``passive`` connects the accumulator (a new equilibrium)."""
+    equilibrium is taken from ``plant``, on the circuit of the controller
+    (:meth:`~loader_model.plant.plant_parameters.PlantOptions.with_controller`: baseline and
+    passive on closed load-holding valves, passive with the accumulator; a new equilibrium)."""
     from loader_model.control.settings import default_settings
+    from loader_model.plant.plant_parameters import PlantOptions
     from loader_model.simulation.ride_control import plant_controller_setup
     from loader_model.simulation.scenario import Scenario, closed_loop
 
-    if name == "passive":
-        plant = plant.with_options(dataclasses.replace(plant.options, accumulator=True))
+    plant = plant.with_options((plant.options or PlantOptions()).with_controller(name))
     if name in _HOLDING:
         scenario = closed_loop(plant, _hold_controller(), [plant.u0], name=name)
     else:

@@ -45,6 +45,8 @@ COLUMN_UNITS: Mapping[str, str] = MappingProxyType(
         "V_p": "m^3/rev",
         "Vd_p": "m^3/(rev*s)",
         "V_acc": "m^3",
+        **{name: "m" for name in ("u_Px", "u_Ox", "u_Py", "u_Oy")},
+        **{name: "m/s" for name in ("ud_Px", "ud_Ox", "ud_Py", "ud_Oy")},
         "phi": "rad",
         "f_Hx": "m/s^2",
         "f_Hy": "m/s^2",
@@ -58,6 +60,8 @@ COLUMN_UNITS: Mapping[str, str] = MappingProxyType(
         "F_Ay": "N",
         "F_By": "N",
         "p_acc": "Pa",
+        "f_Px": "m/s^2",
+        "f_Py": "m/s^2",
         "V_p_ref": "m^3/rev",
         "w_Ax": "m",
         "w_Ay": "m",
@@ -149,14 +153,17 @@ class SimulationResult:
         return COLUMN_UNITS.get(name, "-")
 
     def seat_record(self) -> object:
-        """The seat's accelerations as an ISO 2631 record: x = f_Sx, z = f_Sy, pitch = θ̈1.
+        """The seat's accelerations as an ISO 2631 record: x = f_Px, z = f_Py, pitch = θ̈1.
 
-        Specific forces minus their value at t = 0 (the static 1 g), so that the record holds the
-        vibration; the plant's y (up) is ISO 2631's z.
+        What section 5.3 measured: the seat pad between the occupant and the cushion
+        (:mod:`loader_model.plant.occupant`; with the occupant switched off the pad reads the
+        chassis at S), and the chassis pitch acceleration (section 3.3). Specific forces minus
+        their value at t = 0 (the static 1 g), so that the record holds the vibration; the
+        plant's y (up) is ISO 2631's z.
         """
         from loader_model.iso2631 import VibrationRecord
 
-        axes = {"x": self["f_Sx"], "z": self["f_Sy"], "pitch": self["thetadd_1"]}
+        axes = {"x": self["f_Px"], "z": self["f_Py"], "pitch": self["thetadd_1"]}
         return VibrationRecord(self.time_s, {k: v - v[0] for k, v in axes.items()})
 
     def seat_evaluation(self) -> object:

@@ -214,10 +214,11 @@ def ride_scenario(
             )
         if controller == "passive" and plant.parameter("accumulator_on") != 1.0:
             raise ValueError(
-                "controller 'passive' is the accumulator connected while the pump holds u0; the "
+                "controller 'passive' is the accumulator connected while the pump holds u0 (0 "
+                "behind closed load-holding valves); the "
                 "plant's accumulator is shut (accumulator_on = "
                 f"{plant.parameter('accumulator_on')!r}; allowed: 1.0, "
-                "PlantOptions(accumulator=True))"
+                "PlantOptions.for_controller('passive'))"
             )
         return closed_loop(plant, name=controller, envelope=envelope)
     if pressure_norm_pa is None:
@@ -250,7 +251,8 @@ def resolve_scenario(
     load : BucketLoad, str or Path
         A bucket load, the path of its TOML file, or a shipped case (``"empty"``, ``"full"``).
     options : PlantOptions, optional
-        Circuit switches; default: the accumulator connected for ``passive`` only, the rest on.
+        Circuit switches; default: :meth:`PlantOptions.for_controller` of ``controller``
+        (baseline and passive on closed load-holding valves, passive with the accumulator).
     controller : str
         A ride controller (:func:`ride_scenario`).
     settings : ControllerSettings, str or Path, optional
@@ -269,7 +271,7 @@ def resolve_scenario(
     """
     _check_name(controller)
     if options is None:
-        options = PlantOptions(accumulator=controller == "passive")
+        options = PlantOptions.for_controller(controller)
     plant = resolve_plant(loader, load, options)
     return ride_scenario(plant, controller, settings, envelope=envelope)
 

@@ -1,7 +1,8 @@
 """Figure of a run's seat accelerations (the signals ISO 2631-1 weighs, paper Fig. 13).
 
-Three panels over time: the seat's longitudinal and vertical specific force minus their static
-values (m/s²) and the chassis pitch acceleration θ̈1 (rad/s²), with the intervals in which a tyre
+Three panels over time: the seat pad's longitudinal and vertical specific force minus their
+static values (m/s², :mod:`loader_model.plant.occupant`; the chassis at S in a thin line) and the
+chassis pitch acceleration θ̈1 (rad/s²), with the intervals in which a tyre
 was off the ground shaded. Matplotlib is imported inside :func:`plot_seat` (Agg canvas, no global
 backend); the file is written atomically.
 """
@@ -19,10 +20,12 @@ __all__ = ["PLOT_SUFFIXES", "plot_seat"]
 PLOT_SUFFIXES = (".png", ".pdf", ".svg")
 
 _PANELS = (
-    ("f_Sx", "seat x: f_Sx − f_Sx(0) (m/s²)"),
-    ("f_Sy", "seat vertical: f_Sy − g (m/s²)"),
+    ("f_Px", "seat pad x: f_Px − f_Px(0) (m/s²)"),
+    ("f_Py", "seat pad vertical: f_Py − g (m/s²)"),
     ("thetadd_1", "pitch: θ̈1 (rad/s²)"),
 )
+#: The chassis signal drawn beside each pad signal (the seat's base S).
+_CHASSIS = {"f_Px": "f_Sx", "f_Py": "f_Sy"}
 
 
 def plot_seat(result: SimulationResult, path: str | Path, title: str = "") -> Path:
@@ -52,7 +55,12 @@ def plot_seat(result: SimulationResult, path: str | Path, title: str = "") -> Pa
     airborne = [event for event in result.events if event.kind == "tyre_off_ground"]
     for axis, (name, label) in zip(axes, _PANELS, strict=True):
         values = result[name]
-        axis.plot(result.time_s, values - values[0], linewidth=0.8)
+        if name in _CHASSIS:
+            base = result[_CHASSIS[name]]
+            axis.plot(
+                result.time_s, base - base[0], linewidth=0.5, color="0.6", label="chassis at S"
+            )
+        axis.plot(result.time_s, values - values[0], linewidth=0.8, label="seat pad")
         for index, event in enumerate(airborne):
             axis.axvspan(
                 event.start_s,
@@ -64,8 +72,7 @@ def plot_seat(result: SimulationResult, path: str | Path, title: str = "") -> Pa
             )
         axis.set_ylabel(label)
         axis.grid(True, linewidth=0.3)
-    if airborne:
-        axes[0].legend(loc="upper right")
+    axes[0].legend(loc="upper right")
     axes[-1].set_xlabel("time (s)")
     axes[-1].set_xlim(result.time_s[0], result.time_s[-1])
     figure.suptitle(title or "seat accelerations")

@@ -53,16 +53,18 @@ def test_a_machine_that_tips_over_stops_there_with_its_time_series(
 
 
 def test_a_failed_integration_step_is_named_not_the_iso_input_check(tmp_path, capsys) -> None:
-    """Class E at 40 km/h, full bucket, baseline, rigid-disc tyres: the seat acceleration passes
-    50 g at 13.287 s, where one 1 ms period threw ẋ_H from −0.42 to −13.6 m/s (2 ROS2 substeps
-    avoid it; so does the smoother default tandem-cam road, on which the run stays valid)."""
+    """Class E at 40 km/h, full bucket, seed 3, baseline (closed load-holding valves), rigid-disc tyres: the seat
+    acceleration passes 50 g at 1.306 s in one failed 1 ms period (2 ROS2 substeps avoid it: at
+    most 18.7 m/s² over the 20 s). Before the circuit states (issue 21) the case was seed 1, at
+    13.287 s; on the new baseline that run passes (which runs fail at one substep turns on
+    rounding-level differences of the plant)."""
     output = tmp_path / "x.npz"
     argv = ["simulate", "--speed", "40", "--course", "iso8608:E", "--load", "full",
-            "--duration", "20", "--seed", "1", "--envelope", "rigid",
+            "--duration", "20", "--seed", "3", "--envelope", "rigid",
             "--output", str(output)]  # fmt: skip
     stop_s, error, _ = _stop(argv, capsys)
     assert "seat acceleration f_S" in error and "beyond the bound 490.3 m/s²" in error
-    assert 13.0 < stop_s < 13.5
+    assert 1.2 < stop_s < 1.4
     with np.load(output) as data:
         assert abs(data["time"][-1] - stop_s) <= 5e-4
         assert (

@@ -37,7 +37,8 @@ def pitched_rest() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     road = np.zeros(len(EXOGENOUS_NAMES))
     road[EXOGENOUS_NAMES.index("w_Ay")] = 0.05
     v = ca.SX.sym("v", 5)
-    x = ca.vertcat(v[0:4], ca.DM.zeros(6), v[4], x0[11], x0[12], 0, x0[14])
+    # the occupant's states (x0[15:], zero) act on no sensor and not on the loader
+    x = ca.vertcat(v[0:4], ca.DM.zeros(6), v[4], x0[11], x0[12], 0, x0[14], x0[15:])
     xdot, _ = plant_function()(x, u0, road, params)
     residual = ca.Function("rest", [v], [ca.vertcat(xdot[4:8], xdot[10])])
     solution = ca.rootfinder("rest_solver", "newton", residual)(np.r_[0, 0, 0, 0, x0[10]])

@@ -76,7 +76,8 @@ def test_hydraulics_command_prints_and_plots(tmp_path, capsys) -> None:
     out = capsys.readouterr().out
     assert "static piston pressure p_A       129.74 bar" in out
     assert "k_eq (chambers closed)" in out and "Eq. 43: DC gain -0.0806" in out
-    assert "with accumulator" in out
+    assert "closed load-holding valves, pump idle (baseline)" in out
+    assert "accumulator behind closed valves (passive ride control)" in out
     assert figure.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 

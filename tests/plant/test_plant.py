@@ -13,6 +13,7 @@ from loader_model.plant.linear import linearise_plant
 from loader_model.plant.plant import EXOGENOUS_NAMES, OUTPUT_NAMES, STATE_NAMES, plant_function
 from loader_model.plant.plant_parameters import (
     HYDRAULIC_PARAMETERS,
+    OCCUPANT_PARAMETERS,
     PLANT_PARAMETER_NAMES,
     PLANT_PARAMETER_UNITS,
     PlantOptions,
@@ -24,6 +25,8 @@ OPTIONS = {
     "drive": PlantOptions(),
     "accumulator": PlantOptions(accumulator=True),
     "closed": PlantOptions.closed(),
+    "baseline": PlantOptions.for_controller("baseline"),
+    "passive": PlantOptions.for_controller("passive"),
 }
 
 
@@ -42,7 +45,8 @@ def test_parameter_vector_matches_the_function_inputs() -> None:
     named = dict(zip(PLANT_PARAMETER_NAMES, vector, strict=True))
     assert named["K_oil"] == 1.64e9 and named["f_C"] == 1.07e-4  # Table 5, Table 4
     assert named["omega_p"] == pytest.approx(2 * np.pi * 22.3, rel=1e-15)  # Table 2
-    assert len(HYDRAULIC_PARAMETERS) == len(PLANT_PARAMETER_NAMES) - len(generated.PARAMETER_NAMES)
+    added = len(HYDRAULIC_PARAMETERS) + len(OCCUPANT_PARAMETERS)
+    assert added == len(PLANT_PARAMETER_NAMES) - len(generated.PARAMETER_NAMES)
 
 
 @pytest.mark.parametrize("load", ["empty", "full"])
@@ -56,23 +60,36 @@ def test_static_state_is_an_equilibrium(load: str, option: str) -> None:
     np.testing.assert_allclose(rates[:10], 0.0, atol=1e-12)  # p̈, ξ̇
     # pressure rates: round-off of K_oil/V (1e12 Pa/m³) times flows of 1e-4 m³/s; measured at
     # most 3.0e-6 Pa/s (accumulator on: the orifice's laminar conductance at a round-off Δp)
-    np.testing.assert_allclose(rates[10:12], 0.0, atol=1e-5)
+    # behind closed load-holding valves the piston seals leak from A to B (quasi-static state):
+    # ṗ_A = −K Q_seal / V_A, ṗ_B = +K Q_seal / V_B with Q_seal = n k_seal (p_A − p_B)
+    theta = dict(zip(PLANT_PARAMETER_NAMES, params, strict=True))
+    seal = (1 - theta["holding_open"]) * theta["leakage_on"] * theta["n_cyl"] * theta["k_seal"]
+    seal *= named["p_A"] - named["p_B"]
+    area = np.pi / 4 * theta["d_piston"] ** 2
+    annulus = area - np.pi / 4 * theta["d_rod"] ** 2
+    v_a = theta["n_cyl"] * (area * named["x_piston"] + theta["V_dead_A"])
+    v_b = theta["n_cyl"] * (annulus * (theta["stroke"] - named["x_piston"]) + theta["V_dead_B"])
+    expected = theta["K_oil"] * seal * np.array([-1 / v_a, 1 / v_b])
+    np.testing.assert_allclose(rates[10:12], expected, rtol=1e-9, atol=1e-5)
     np.testing.assert_allclose(rates[12:], 0.0, atol=1e-9)
-    # accelerometers read gravity only; the rod side sits at charge pressure
+    # accelerometers read gravity only, the seat pad too; the rod side sits at charge pressure
     assert named["f_Hy"] == pytest.approx(9.81, rel=1e-12)
+    assert named["f_Py"] == pytest.approx(9.81, rel=1e-12) and abs(named["f_Px"]) < 1e-12
     assert named["p_B"] == pytest.approx(2.0e6, rel=1e-15)
     # measured static piston pressures (gauge): 89.3 bar (340 kg), 129.7 bar (770 kg)
     expected_bar = {"empty": 89.28, "full": 129.74}[load]
     assert named["p_A"] / 1e5 == pytest.approx(expected_bar, abs=0.01)
 
 
-@pytest.mark.parametrize("option", ["drive", "accumulator"])
+@pytest.mark.parametrize("option", ["drive", "accumulator", "passive"])
 def test_ad_linearisation_matches_finite_differences(option: str) -> None:
     """At a moving, off-equilibrium point with every part of the drive active."""
     params = plant_parameter_vector(None, "full", OPTIONS[option])
     state, command = static_state(params)
     rng = np.random.default_rng(7)
-    scale = np.array([1e-3] * 4 + [0.05] * 4 + [1e-3] * 2 + [3e5, 1e5, 2e-6, 1e-4, 2e-5])
+    scale = np.array(
+        [1e-3] * 4 + [0.05] * 4 + [1e-3] * 2 + [3e5, 1e5, 2e-6, 1e-4, 2e-5] + [1e-3, 0.02] * 4
+    )
     x = state + scale * rng.standard_normal(len(STATE_NAMES))
     u = command + 3e-6
     w = np.array([1e-3, 2e-3, -1e-3, 1e-3, 0.01, 0.05, -0.02, 0.03, 100.0, -50.0, 20.0])

@@ -33,10 +33,17 @@ from loader_model.plant.plant_parameters import (
     plant_parameter_vector,
 )
 
-OPTIONS = (PlantOptions(), PlantOptions(accumulator=True), PlantOptions.closed())
+OPTIONS = (
+    PlantOptions(),
+    PlantOptions(accumulator=True),
+    PlantOptions.closed(),
+    PlantOptions.for_controller("baseline"),
+    PlantOptions.for_controller("passive"),
+)
 #: Spread of the random states around the static equilibrium (state order of STATE_NAMES).
 SPREAD = np.array(
     [0.02, 0.03, 0.03, 0.3, 0.5, 0.5, 0.5, 1.0, 0.005, 0.005, 8e6, 2e6, 3e-5, 2e-3, 4e-4]
+    + [0.01, 0.2] * 4  # the occupant (outside the energy balance: it must not disturb it)
 )
 
 

@@ -74,7 +74,9 @@ def _once(resolves: int, equilibria: int) -> dict[str, int]:
 
 def test_one_trial_resolves_once_and_reuses_the_scenario(calls, monkeypatch) -> None:
     """A fresh process's first trial of a condition: one resolve, one equilibrium; the next trial
-    of it, and a trial of another controller on the same plant: none (the cached scenario)."""
+    of it, and a trial of another controller on the same plant: none (the cached scenario).
+    The virtual accumulator runs on the skyhook's circuit; baseline and passive on closed
+    load-holding valves (one plant each, passive with the accumulator)."""
     from loader_model.experiments import trials
 
     monkeypatch.setattr(trials, "_PLANTS", {})
@@ -87,8 +89,13 @@ def test_one_trial_resolves_once_and_reuses_the_scenario(calls, monkeypatch) -> 
     calls.clear()
     trials.run_trial(specs[1])
     assert _counts(calls) == _once(0, 0)
+    trials.run_trial(dataclasses.replace(specs[0], controller="virtual-accumulator"))
+    assert _counts(calls) == _once(0, 0)  # open valves, accumulator shut: the same plant
     baseline = dataclasses.replace(specs[0], controller="baseline")
-    trials.run_trial(baseline)  # the accumulator is shut for both: the same plant
+    trials.run_trial(baseline)  # closed load-holding valves: another plant
+    assert _counts(calls) == _once(1, 1)
+    calls.clear()
+    trials.run_trial(dataclasses.replace(baseline, trial=1))
     assert _counts(calls) == _once(0, 0)
     trials.run_trial(dataclasses.replace(specs[0], controller="passive"))
     assert _counts(calls) == _once(1, 1)  # the accumulator connected: another plant
@@ -125,7 +132,8 @@ def test_the_simulate_command_from_files_resolves_once(calls, capsys, controller
 
 def test_a_robustness_sample_solves_one_equilibrium_per_plant(calls) -> None:
     """One sample, every controller and the pole margin of the gains: one resolve, and one
-    equilibrium per distinct plant (accumulator shut; connected for passive)."""
+    equilibrium per distinct plant: open load-holding valves for the active controllers, closed
+    for the baseline, closed with the accumulator connected for passive."""
     from loader_model.robustness.gains import resolve_gains
     from loader_model.robustness.runner import run_sample
     from loader_model.robustness.sampling import sample_specs
@@ -153,4 +161,4 @@ compare = ["passive", "virtual-accumulator", "skyhook"]
     calls.clear()
     rows = run_sample(study, gains, spec)
     assert [row["failed"] for row in rows] == [False] * 4, [row["reason"] for row in rows]
-    assert _counts(calls) == _once(1, 2)
+    assert _counts(calls) == _once(1, 3)
