@@ -42,6 +42,7 @@ from loader_model.simulation.validity_check import ModelValidityError, Simulatio
 
 __all__ = [
     "DEFAULT_CHUNK_PERIODS",
+    "DEFAULT_SUBSTEPS",
     "ModelValidityError",
     "SimulationError",
     "course_input",
@@ -52,6 +53,13 @@ __all__ = [
 #: Periods per ``mapaccum`` call (0.5 s): the finiteness check runs after each chunk; measured
 #: fastest among 250-2000 on the development machine.
 DEFAULT_CHUNK_PERIODS = 500
+#: ROS2 steps per 1 ms period. On closed load-holding valves (baseline, passive: issue 21) the
+#: sealed piston side swings between the make-up check (20 bar) and the relief (230 bar) over the
+#: boards, and one step per period parts from the CVODES reference at rtol 1e-10 (measured, empty
+#: bucket, 9 km/h paper course, seat pad a_total: tandem-cam tyres −2.2 % with 1 substep, −1.6 %
+#: with 2, +0.24 % with 4, 0.00 % with 8; rigid discs −4.6 %, −5.3 %, 0.00 %, 0.00 %). Four cost
+#: 3.0x the integration time of one (38 ms -> 114 ms for the 15 s course, warm, this machine).
+DEFAULT_SUBSTEPS = 4
 #: Outputs that are states of the same name and value; they appear once in the result.
 _STATE_OUTPUTS = frozenset(OUTPUT_NAMES) & frozenset(STATE_NAMES)
 
@@ -130,7 +138,7 @@ def simulate(
     sensors: SensorModel | None = None,
     duration_s: float | None = None,
     period_s: float = CONTROLLER_PERIOD_S,
-    substeps: int = 1,
+    substeps: int = DEFAULT_SUBSTEPS,
     jit: bool = True,
     chunk_periods: int = DEFAULT_CHUNK_PERIODS,
     airborne_min_s: float = DEFAULT_AIRBORNE_MIN_S,
@@ -168,7 +176,7 @@ def simulate(
     period_s : float
         Controller period h in s.
     substeps : int
-        ROS2 steps per period.
+        ROS2 steps per period (default :data:`DEFAULT_SUBSTEPS`).
     jit : bool
         JIT-compile the period (falls back to the SX virtual machine without a C compiler).
     chunk_periods : int

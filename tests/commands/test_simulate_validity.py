@@ -53,14 +53,15 @@ def test_a_machine_that_tips_over_stops_there_with_its_time_series(
 
 
 def test_a_failed_integration_step_is_named_not_the_iso_input_check(tmp_path, capsys) -> None:
-    """Class E at 40 km/h, full bucket, seed 3, baseline (closed load-holding valves), rigid-disc tyres: the seat
-    acceleration passes 50 g at 1.306 s in one failed 1 ms period (2 ROS2 substeps avoid it: at
-    most 18.7 m/s² over the 20 s). Before the circuit states (issue 21) the case was seed 1, at
-    13.287 s; on the new baseline that run passes (which runs fail at one substep turns on
-    rounding-level differences of the plant)."""
+    """Class E at 40 km/h, full bucket, seed 3, baseline (closed load-holding valves), rigid-disc
+    tyres, one ROS2 step per period: the seat acceleration passes 50 g at 1.306 s in one failed 1
+    ms period (2 ROS2 substeps avoid it: at most 18.7 m/s² over the 20 s; the default is 4).
+    Before the circuit states (issue 21) the case was seed 1, at 13.287 s; on the new baseline
+    that run passes (which runs fail at one substep turns on rounding-level differences of the
+    plant)."""
     output = tmp_path / "x.npz"
     argv = ["simulate", "--speed", "40", "--course", "iso8608:E", "--load", "full",
-            "--duration", "20", "--seed", "3", "--envelope", "rigid",
+            "--duration", "20", "--seed", "3", "--envelope", "rigid", "--substeps", "1",
             "--output", str(output)]  # fmt: skip
     stop_s, error, _ = _stop(argv, capsys)
     assert "seat acceleration f_S" in error and "beyond the bound 490.3 m/s²" in error
