@@ -10,10 +10,6 @@ What varies between simulated trials (each drawn from its own seed, module :func
 - the board positions: each board shifted by a normal of standard deviation
   :data:`POSITION_JITTER_M` (boards laid by hand).
 
-- nothing else: the tyres envelop the boards as tandem elliptical cams by default
-  (:attr:`TrialSpec.envelope`, :mod:`~loader_model.simulation.tandem_cam`), ``"rigid"`` for rigid
-  discs.
-
 - the sensors' noise: white noise of :data:`TRIAL_SENSOR_NOISE` on the controller's five
   readings (:class:`~loader_model.control.sensors.SensorModel`, applied inside the compiled 1 kHz
   loop), a fresh draw per trial. The paper names no sensor types or noise levels; the values
@@ -22,6 +18,11 @@ What varies between simulated trials (each drawn from its own seed, module :func
 Every (speed, load, controller, trial) draws independently (the real trials were separate
 drives), from ``numpy.random.SeedSequence([seed, speed index, load index, controller index,
 trial])``: the same seed gives the same trials whatever the order or the worker that runs them.
+
+Which model a trial runs on is its :attr:`TrialSpec.variant`
+(:class:`~loader_model.experiments.variant.ModelVariant`: circuit states, seat pad and occupant,
+the tyres' envelope, Table 3's gains, parameter values; default the model as built). It draws
+nothing, so every variant sees the same speeds, boards and noise.
 """
 
 from __future__ import annotations
@@ -32,8 +33,9 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from loader_model.experiments.variant import AS_BUILT, ENVELOPES, ModelVariant
+
 if TYPE_CHECKING:
-    from loader_model.plant.plant_parameters import PlantOptions
     from loader_model.plant.scenario import PlantScenario
     from loader_model.simulation.scenario import Scenario
 
@@ -106,8 +108,8 @@ class TrialSpec:
         Simulated time (None: the whole course).
     k_fb : tuple of 4 float or None
         Skyhook gains of a designed controller (None: the settings file's, Table 3).
-    envelope : str
-        The tyres' enveloping model, ``"tandem-cam"`` or ``"rigid"``.
+    variant : ModelVariant
+        The model the trial runs on (module notes).
     """
 
     speed_kmh: float
@@ -118,7 +120,12 @@ class TrialSpec:
     course_seed: int
     duration_s: float | None = None
     k_fb: tuple[float, ...] | None = None
-    envelope: str = "tandem-cam"
+    variant: ModelVariant = AS_BUILT
+
+    @property
+    def envelope(self) -> str:
+        """The tyres' enveloping model of the trial's variant."""
+        return self.variant.envelope
 
 
 @dataclass(frozen=True)
@@ -140,7 +147,8 @@ def trial_specs(
     controllers: tuple[str, ...] = CONTROLLERS,
     duration_s: float | None = None,
     designed: dict[str, tuple[float, ...]] | None = None,
-    envelope: str = "tandem-cam",
+    envelope: str | None = None,
+    variant: ModelVariant = AS_BUILT,
 ) -> list[TrialSpec]:
     """All trials of the experiment, each drawn from its own seed (module notes).
 
@@ -156,9 +164,11 @@ def trial_specs(
         Simulated time of each trial (default: the whole course).
     designed : dict, optional
         :data:`DESIGNED_CONTROLLERS` name -> skyhook gains, run after ``controllers``.
-    envelope : str
-        The tyres' enveloping model of every trial (``"tandem-cam"`` or ``"rigid"``); it draws
-        nothing, so both give the same speeds, boards and noise.
+    envelope : str, optional
+        The tyres' enveloping model of every trial (``"tandem-cam"`` or ``"rigid"``), replacing
+        the variant's.
+    variant : ModelVariant
+        The model of every trial (default: as built).
 
     Returns
     -------
@@ -173,8 +183,10 @@ def trial_specs(
     unknown = sorted(set(designed) - set(DESIGNED_CONTROLLERS))
     if unknown:
         raise ValueError(f"designed controllers {unknown}; allowed: {list(DESIGNED_CONTROLLERS)}")
-    if envelope not in ("rigid", "tandem-cam"):
-        raise ValueError(f"envelope must be 'rigid' or 'tandem-cam'; got {envelope!r}")
+    if envelope is not None:
+        if envelope not in ENVELOPES:
+            raise ValueError(f"envelope must be one of {list(ENVELOPES)}; got {envelope!r}")
+        variant = dataclasses.replace(variant, envelope=envelope)
     every = (*CONTROLLERS, *DESIGNED_CONTROLLERS)
     specs = []
     for i, speed in enumerate(speeds_kmh):
@@ -203,26 +215,28 @@ def trial_specs(
                             course_seed,
                             duration_s,
                             gains,
-                            envelope,
+                            variant,
                         )
                     )
     return specs
 
 
-_PLANTS: dict[tuple[str, PlantOptions], PlantScenario] = {}
-_SCENARIOS: dict[tuple[str, str, tuple[float, ...] | None], Scenario] = {}
+_PLANTS: dict[tuple[Any, ...], PlantScenario] = {}
+_SCENARIOS: dict[tuple[Any, ...], Scenario] = {}
 
 
-def plant_scenario(load: str, controller: str) -> PlantScenario:
-    """The experiment's plant per load and the circuit ``controller`` runs on
-    (:meth:`~loader_model.plant.plant_parameters.PlantOptions.for_controller`; the shipped
-    loader), resolved once per process (:func:`~loader_model.plant.scenario.resolve_plant`)."""
-    from loader_model.plant.plant_parameters import PlantOptions
+def plant_scenario(load: str, controller: str, variant: ModelVariant = AS_BUILT) -> PlantScenario:
+    """The experiment's plant per load and the circuit ``controller`` runs on in ``variant``
+    (:meth:`~loader_model.experiments.variant.ModelVariant.plant_options`; the shipped loader
+    with the variant's values), resolved once per process
+    (:func:`~loader_model.plant.scenario.resolve_plant`)."""
     from loader_model.plant.scenario import resolve_plant
 
-    key = (load, PlantOptions.for_controller(controller))
+    options = variant.plant_options(controller)
+    key = (load, options, variant.values)
     if key not in _PLANTS:
-        _PLANTS[key] = resolve_plant(None, load, key[1])
+        loader, bucket = variant.parameter_sets(load)
+        _PLANTS[key] = resolve_plant(loader, bucket, options)
     return _PLANTS[key]
 
 
@@ -278,20 +292,31 @@ def controller_arguments(
     }
 
 
-def plant_for(controller: str, load: str) -> np.ndarray:
+def plant_for(controller: str, load: str, variant: ModelVariant = AS_BUILT) -> np.ndarray:
     """Plant parameters of ``load`` on the circuit of ``controller`` (:func:`plant_scenario`)."""
-    return plant_scenario(load, controller).params
+    return plant_scenario(load, controller, variant).params
 
 
-def trial_scenario(controller: str, load: str, k_fb: tuple[float, ...] | None = None) -> Scenario:
+def trial_scenario(
+    controller: str,
+    load: str,
+    k_fb: tuple[float, ...] | None = None,
+    variant: ModelVariant = AS_BUILT,
+) -> Scenario:
     """The scenario of one condition (:func:`controller_scenario` on :func:`plant_scenario`),
-    built once per process and condition: every trial of the condition shares the plant's
-    equilibrium and the controller's fixed point (a matrix logarithm)."""
-    key = (controller, load, None if k_fb is None else tuple(float(k) for k in k_fb))
+    built once per process, condition and variant: every trial of the condition shares the
+    plant's equilibrium and the controller's fixed point (a matrix logarithm). The ``skyhook``
+    row runs the variant's Table 3 gains."""
+    gains = None if k_fb is None else tuple(float(k) for k in k_fb)
+    key = (controller, load, gains, variant)
     if key not in _SCENARIOS:
-        plant = plant_scenario(load, controller)
+        plant = plant_scenario(load, controller, variant)
         norm = plant.load.pressure_normalisation
-        _SCENARIOS[key] = controller_scenario(controller, plant, norm, key[2])
+        if controller == "skyhook" and variant.table3_gain != AS_BUILT.table3_gain:
+            scenario = controller_scenario("skyhook-printed", plant, norm, variant.table3_gain)
+        else:
+            scenario = controller_scenario(controller, plant, norm, gains)
+        _SCENARIOS[key] = scenario
     return _SCENARIOS[key]
 
 
@@ -301,13 +326,13 @@ def run_trial(spec: TrialSpec) -> TrialOutcome:
     from loader_model.simulation.courses import paper_course
     from loader_model.simulation.simulator import course_input, simulate
 
-    scenario = trial_scenario(spec.controller, spec.load, spec.k_fb)
+    scenario = trial_scenario(spec.controller, spec.load, spec.k_fb, spec.variant)
     course = paper_course(
         spec.speed_kmh, position_jitter_m=POSITION_JITTER_M, seed=spec.course_seed
     )
     course = dataclasses.replace(course, speed_m_s=course.speed_m_s * spec.speed_factor)
     result = simulate(
-        course_input(course, scenario, envelope=spec.envelope),
+        course_input(course, scenario, envelope=spec.variant.envelope),
         scenario,
         sensors=SensorModel(noise_std=TRIAL_SENSOR_NOISE, seed=spec.course_seed),
         duration_s=spec.duration_s,
