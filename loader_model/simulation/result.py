@@ -21,7 +21,13 @@ import numpy as np
 
 from loader_model.io.export import write_atomically
 
-__all__ = ["COLUMN_UNITS", "RESULT_SUFFIXES", "Event", "SimulationResult"]
+__all__ = [
+    "COLUMN_UNITS",
+    "RESULT_SUFFIXES",
+    "Event",
+    "SimulationResult",
+    "seat_signal_names",
+]
 
 #: Suffixes :meth:`SimulationResult.write` accepts.
 RESULT_SUFFIXES = (".csv", ".npz")
@@ -72,6 +78,14 @@ COLUMN_UNITS: Mapping[str, str] = MappingProxyType(
         "M_d": "N*m",
     }
 )
+
+
+def seat_signal_names() -> dict[str, str]:
+    """The seat's ISO 2631 axes and the plant outputs (:data:`~loader_model.plant.plant.
+    OUTPUT_NAMES`) that carry them: x = f_Sx, z = f_Sy (the plant's y, up, is ISO 2631's z),
+    pitch = θ̈1. The one place that says what "the seat" is: :meth:`SimulationResult.seat_record`
+    and the optimal-control bound (:mod:`loader_model.bound`) both read it."""
+    return {"x": "f_Sx", "z": "f_Sy", "pitch": "thetadd_1"}
 
 
 @dataclass(frozen=True)
@@ -156,7 +170,7 @@ class SimulationResult:
         """
         from loader_model.iso2631 import VibrationRecord
 
-        axes = {"x": self["f_Sx"], "z": self["f_Sy"], "pitch": self["thetadd_1"]}
+        axes = {axis: self[signal] for axis, signal in seat_signal_names().items()}
         return VibrationRecord(self.time_s, {k: v - v[0] for k, v in axes.items()})
 
     def seat_evaluation(self) -> object:
