@@ -7,7 +7,7 @@ STAMP := $(VENV)/.installed
 LOCK := requirements-lock.txt
 PIP_QUIET := --quiet --disable-pip-version-check
 
-.PHONY: setup lock regenerate calibrate gains lint test test-slow bench reproduce docs clean
+.PHONY: setup lock regenerate calibrate gains bound lint test test-slow bench reproduce docs clean
 
 $(STAMP): pyproject.toml $(LOCK)
 	$(PYTHON) -m venv $(VENV)
@@ -58,6 +58,10 @@ test-slow: setup
 ## gains: refine the skyhook gains on the nonlinear paper course (both loads, 9 km/h) and ship them
 gains: setup
 	$(VENV)/bin/loader-model design --method refine --evaluations 150 --output loader_model/data/controller_refined.toml
+
+## bound: the bound for the four Table 6 conditions, shipped for the report (a slow test checks it)
+bound: setup
+	$(PY) -m loader_model.bound.table6 --output loader_model/data/bound_table6.toml
 
 ## bench: wall times of regeneration, import and model evaluation (medians, with ratios)
 bench: setup

@@ -24,6 +24,7 @@ COMMANDS: dict[str, str] = {
     "export-fmu": "loader_model.commands.export_fmu_command",
     "design": "loader_model.commands.design_command",
     "robustness": "loader_model.commands.robustness_command",
+    "bound": "loader_model.commands.bound_command",
 }
 
 

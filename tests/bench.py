@@ -80,6 +80,7 @@ def main() -> int:
     _bench_matrix()
     _control_design()
     _comfort_design()
+    _bench_bound()
     bench_robustness.main()
     return 0
 
@@ -282,6 +283,24 @@ def _scipy_closed_loop(road, params, duration_s: float) -> np.ndarray:
 #: axle at 1.93 s, rear at 2.41 s). The whole 20 s run would take about 7-10 minutes with lambdify
 #: "numpy" (20-30 s per simulated second on the development machine).
 BASELINE_SPAN_S = 3.0
+
+
+def _bench_bound() -> None:
+    """The linear (non-causal LQ) bound of one paper course at 18 km/h (11.5 s, 1150 command
+    values; goal < 5 s), by the Riccati sweep and by the sparse KKT solve. The nonlinear bound
+    (IPOPT) is not benchmarked yet: it does not converge in useful time (docs/guide/bound.md)."""
+    from loader_model.bound.linear import solve_linear_bound
+    from loader_model.bound.problem import bound_problem
+    from loader_model.plant.scenario import resolve_plant
+    from loader_model.simulation import paper_course
+    from loader_model.simulation.simulator import course_input
+
+    plant = resolve_plant(None, "empty")
+    problem = bound_problem(plant, course_input(paper_course(18.0), plant))
+    solve_linear_bound(problem)  # the linearisation's Jacobian Function, built once
+    for method in ("riccati", "kkt"):
+        seconds = _median_seconds(lambda m=method: solve_linear_bound(problem, m), 3)
+        _report(f"linear bound, {problem.duration_s:.1f} s course ({method})", seconds, unit="s")
 
 
 def _bench_simulator() -> None:

@@ -21,7 +21,13 @@ import numpy as np
 
 from loader_model.io.export import write_atomically
 
-__all__ = ["COLUMN_UNITS", "RESULT_SUFFIXES", "Event", "SimulationResult"]
+__all__ = [
+    "COLUMN_UNITS",
+    "RESULT_SUFFIXES",
+    "Event",
+    "SimulationResult",
+    "seat_signal_names",
+]
 
 #: Suffixes :meth:`SimulationResult.write` accepts.
 RESULT_SUFFIXES = (".csv", ".npz")
@@ -76,6 +82,16 @@ COLUMN_UNITS: Mapping[str, str] = MappingProxyType(
         "M_d": "N*m",
     }
 )
+
+
+def seat_signal_names() -> dict[str, str]:
+    """The seat's ISO 2631 axes and the plant outputs (:data:`~loader_model.plant.plant.
+    OUTPUT_NAMES`) that carry them: x = f_Px, z = f_Py, the seat pad under the occupant
+    (section 5.3; :mod:`loader_model.plant.occupant`, equal to the chassis's f_S with the
+    occupant off; the plant's y, up, is ISO 2631's z), pitch = θ̈1 from the chassis (section
+    3.3). The one place that says what "the seat" is: :meth:`SimulationResult.seat_record` and
+    the optimal-control bound (:mod:`loader_model.bound`) both read it."""
+    return {"x": "f_Px", "z": "f_Py", "pitch": "thetadd_1"}
 
 
 @dataclass(frozen=True)
@@ -163,7 +179,7 @@ class SimulationResult:
         """
         from loader_model.iso2631 import VibrationRecord
 
-        axes = {"x": self["f_Px"], "z": self["f_Py"], "pitch": self["thetadd_1"]}
+        axes = {axis: self[signal] for axis, signal in seat_signal_names().items()}
         return VibrationRecord(self.time_s, {k: v - v[0] for k, v in axes.items()})
 
     def seat_evaluation(self) -> object:

@@ -1,0 +1,131 @@
+"""The bound for the four Table 6 conditions as a shipped result file, and its report section.
+
+``make bound`` runs ``python -m loader_model.bound.table6`` and writes
+``loader_model/data/bound_table6.toml``: per condition (9 and 18 km/h, empty and full bucket, the
+paper's course without board jitter, one trial), the baseline's a_total (Eq. 50) over the bound's
+horizon and the linear bound's, with the peak of its command over the pump's limit.
+:func:`render_markdown` gives the reproduce report a section from that file (a slow test checks
+that the file is current). The bound is the non-causal LQ bound of the linearised plant
+(:mod:`~loader_model.bound.linear`), without the pump's limits: see its peak command.
+"""
+
+from __future__ import annotations
+
+import argparse
+import tomllib
+from importlib import resources
+from pathlib import Path
+
+from loader_model.io.export import write_atomically
+
+__all__ = ["COMMAND", "CONDITIONS", "compute_table", "load_table", "render_markdown", "write_table"]
+
+#: The Table 6 conditions: speed in km/h and bucket load.
+CONDITIONS: tuple[tuple[float, str], ...] = (
+    (9.0, "empty"),
+    (9.0, "full"),
+    (18.0, "empty"),
+    (18.0, "full"),
+)
+#: The command that writes the shipped file.
+COMMAND = "python -m loader_model.bound.table6 --output loader_model/data/bound_table6.toml"
+
+
+def compute_table() -> dict[str, dict[str, float]]:
+    """Baseline and linear-bound a_total per condition (module notes)."""
+    import numpy as np
+
+    from loader_model.bound.linear import solve_linear_bound
+    from loader_model.bound.problem import bound_problem
+    from loader_model.plant.scenario import resolve_plant
+    from loader_model.simulation.courses import paper_course
+    from loader_model.simulation.scenario import closed_loop
+    from loader_model.simulation.simulator import course_input, simulate
+
+    table = {}
+    for speed, load in CONDITIONS:
+        plant = resolve_plant(None, load)
+        road = course_input(paper_course(speed), plant)
+        problem = bound_problem(plant, road)
+        baseline = simulate(road, closed_loop(plant), duration_s=problem.duration_s)
+        bound = solve_linear_bound(problem)
+        table[f"{speed:g} km/h {load}"] = {
+            "speed_kmh": speed,
+            "load": load,
+            "baseline_a_total_m_s2": float(baseline.seat_evaluation().total_m_s2),
+            "linear_bound_a_total_m_s2": float(bound.a_total_m_s2),
+            "linear_bound_peak_command_over_limit": float(
+                np.max(np.abs(plant.u0 + bound.command)) / problem.u_bounds[1]
+            ),
+        }
+    return table
+
+
+def write_table(path: str | Path) -> Path:
+    """Compute the table and write it as TOML (atomically) with the command that made it."""
+    table = compute_table()
+
+    def write(temporary: Path) -> None:
+        lines = [
+            "# The bound for the four Table 6 conditions (loader_model.bound.table6).",
+            f"# Written by `make bound`: {COMMAND}",
+            "# Linear bound: non-causal LQ on the linearised plant, no pump limits.",
+        ]
+        for name, row in table.items():
+            lines.append(f'\n["{name}"]')
+            for key, value in row.items():
+                lines.append(
+                    f'{key} = "{value}"' if isinstance(value, str) else f"{key} = {value!r}"
+                )
+        temporary.write_text("\n".join(lines) + "\n", encoding="utf-8")
+
+    return write_atomically(path, write, (".toml",), "bound table")
+
+
+def load_table(path: str | Path | None = None) -> dict[str, dict[str, float]]:
+    """The shipped (or given) table."""
+    if path is None:
+        with resources.as_file(
+            resources.files("loader_model").joinpath("data", "bound_table6.toml")
+        ) as shipped:
+            return tomllib.loads(shipped.read_text(encoding="utf-8"))
+    return tomllib.loads(Path(path).read_text(encoding="utf-8"))
+
+
+def render_markdown(path: str | Path | None = None) -> str:
+    """The report section: baseline and linear bound per condition, from the result file."""
+    table = load_table(path)
+    lines = [
+        "## The bound: what the pump could do with the course known in advance",
+        "",
+        "| speed / load | baseline a_total [m/s²] | linear bound [m/s²] | reduction [%] | "
+        "bound's peak command / pump limit |",
+        "|---|---|---|---|---|",
+    ]
+    for name, row in table.items():
+        baseline, bound = row["baseline_a_total_m_s2"], row["linear_bound_a_total_m_s2"]
+        lines.append(
+            f"| {name} | {baseline:.3f} | {bound:.3f} | {100 * (bound / baseline - 1):+.1f} | "
+            f"{row['linear_bound_peak_command_over_limit']:.1f} |"
+        )
+    lines += [
+        "",
+        "The linear bound is the non-causal LQ optimum of the linearised plant (one trial per "
+        "condition, the paper's course without jitter). It has no pump limits and asks for "
+        "several times the pump's displacement, so it bounds the linear plant, not the machine; "
+        f"the file comes from `{COMMAND}` (`make bound`).",
+    ]
+    return "\n".join(lines)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Write the table where ``--output`` says."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--output", required=True)
+    args = parser.parse_args(argv)
+    print(f"wrote {write_table(args.output)}")
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    raise SystemExit(main())

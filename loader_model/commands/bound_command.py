@@ -1,0 +1,158 @@
+"""The best any controller could do on a known course, beside the baseline and every controller.
+
+Simulates the baseline and the controllers (``passive``, ``virtual-accumulator``, ``skyhook``
+with Table 3 gains, ``skyhook-lqr`` and ``skyhook-optimised`` designed on the linear plant,
+``skyhook-refined`` from the shipped refined settings) over the course and prints a_total
+(ISO 2631-1, Eq. 49, 50) of each beside the bound, with each controller's share of the
+achievable reduction, (baseline − controller) / (baseline − bound). The bound printed is the
+non-causal LQ bound on the linearised plant (the road known in advance, no pump limits:
+:mod:`loader_model.bound.linear`). With ``--output DIR`` writes ``bound.csv`` (the optimal
+command and seat trace beside the best controller's) and ``bound.png``.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+from loader_model.commands.common import add_model_arguments
+
+__all__ = ["CONTROLLERS", "HELP", "add_arguments", "run"]
+
+HELP = "the clairvoyant bound on a course beside the baseline and every controller"
+
+#: Controllers the command runs by default (baseline always).
+CONTROLLERS = (
+    "baseline",
+    "passive",
+    "virtual-accumulator",
+    "skyhook",
+    "skyhook-lqr",
+    "skyhook-optimised",
+    "skyhook-refined",
+)
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Register the arguments of ``loader-model bound``."""
+    add_model_arguments(parser)
+    parser.add_argument("--course", default="paper", help="'paper' (the only course so far)")
+    parser.add_argument("--speed", type=float, default=9.0, metavar="KMH", help="9 or 18 km/h")
+    parser.add_argument(
+        "--controllers",
+        default=",".join(CONTROLLERS),
+        metavar="LIST",
+        help=f"comma-separated, from {', '.join(CONTROLLERS)} (default: all)",
+    )
+    parser.add_argument(
+        "--hold-ms", type=int, default=10, metavar="MS", help="command grid in ms (default 10)"
+    )
+    parser.add_argument(
+        "--max-intervals",
+        type=int,
+        default=6000,
+        metavar="N",
+        help="largest number of command values one problem may have (default 6000)",
+    )
+    parser.add_argument("--output", metavar="DIR", default=None, help="write bound.csv, .png")
+
+
+def _controllers(text: str) -> tuple[str, ...]:
+    names = tuple(name.strip() for name in text.split(",") if name.strip())
+    unknown = [name for name in names if name not in CONTROLLERS]
+    if unknown or not names:
+        raise ValueError(
+            f"--controllers {text!r}: unknown {unknown}; allowed: {', '.join(CONTROLLERS)}"
+        )
+    return ("baseline", *(name for name in names if name != "baseline"))
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run the comparison, print it and write the files; an interrupt says what was written."""
+    from loader_model.io.interrupts import files_note, keeping
+
+    written: list[str] = []
+    wanted = (None,) if args.output is None else (f"{args.output}/bound.csv",)
+    with keeping(lambda: files_note(wanted, written)):
+        return _run(args, written)
+
+
+def _run(args: argparse.Namespace, written: list[str]) -> int:
+    from pathlib import Path
+
+    if args.course != "paper":
+        raise ValueError(f"--course {args.course!r}: allowed: paper")
+    if args.speed not in (9.0, 18.0):
+        raise ValueError(f"--speed {args.speed:g}: allowed: 9 or 18 km/h (the paper's course)")
+    if not 1 <= args.hold_ms <= 100:
+        raise ValueError(f"--hold-ms {args.hold_ms}: allowed: 1 to 100")
+    if args.max_intervals < 2:
+        raise ValueError(f"--max-intervals {args.max_intervals}: allowed: an integer >= 2")
+    names = _controllers(args.controllers)
+    output = None
+    if args.output is not None:
+        output = Path(args.output)
+        if output.exists() and not output.is_dir():
+            raise ValueError(f"--output {args.output!r}: not a folder")
+    from loader_model.bound.comparison import (
+        compare,
+        format_comparison,
+        plot_comparison,
+        write_csv,
+    )
+    from loader_model.bound.problem import bound_problem
+    from loader_model.simulation.courses import paper_course
+    from loader_model.simulation.simulator import course_input
+
+    scenarios = _scenarios(names, args.params, args.load)
+    plant = scenarios["baseline"].plant
+    course = paper_course(args.speed)
+    road = course_input(course, plant)
+    try:
+        problem = bound_problem(
+            plant, road, hold_periods=args.hold_ms, max_intervals=args.max_intervals
+        )
+    except ValueError as error:
+        raise ValueError(f"--course/--speed/--hold-ms: {error}") from None
+    title = f"{course.name}; load {args.load}"
+    comparison = compare(problem, road, scenarios, title=title, progress=True)
+    print(format_comparison(comparison))
+    print(f"linear bound solved in {comparison.bound.solve_s:.2f} s")
+    if output is not None:
+        output.mkdir(parents=True, exist_ok=True)
+        for path in (write_csv(comparison, output / "bound.csv"),):
+            written.append(str(path))
+            print(f"wrote {path}")
+        path = plot_comparison(comparison, output / "bound.png")
+        written.append(str(path))
+        print(f"wrote {path}")
+    return 0
+
+
+def _scenarios(names: tuple[str, ...], params: str | None, load: str) -> dict:
+    """The closed loops of ``names`` on the loader ``params`` and ``load``."""
+    from loader_model.control.settings import default_settings, with_gains
+    from loader_model.plant.plant_parameters import PlantOptions
+    from loader_model.plant.scenario import resolve_plant
+    from loader_model.simulation.scenario import ride_scenario
+
+    plants = {False: resolve_plant(params, load, PlantOptions())}
+    if "passive" in names:
+        plants[True] = plants[False].with_options(PlantOptions(accumulator=True))
+    designed = {}
+    if {"skyhook-lqr", "skyhook-optimised"} & set(names):
+        from loader_model.experiments.designed_gains import designed_gains
+
+        designed = {name: gain.k_fb for name, gain in designed_gains().items()}
+    scenarios = {}
+    for name in names:
+        plant = plants[name == "passive"]
+        if name in ("baseline", "passive", "virtual-accumulator", "skyhook"):
+            scenarios[name] = ride_scenario(plant, name)
+        elif name == "skyhook-refined":
+            from loader_model.experiments.designed_gains import refined_settings
+
+            scenarios[name] = ride_scenario(plant, "skyhook", refined_settings())
+        else:
+            settings = with_gains(default_settings(), designed[name], name)
+            scenarios[name] = ride_scenario(plant, "skyhook", settings)
+    return scenarios

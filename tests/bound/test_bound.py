@@ -1,0 +1,124 @@
+"""The bound package: weighting, LQ bound (Riccati against a sparse KKT solve), replay, inputs."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from loader_model.bound.linear import evaluate, linear_quadratic, solve_linear_bound
+from loader_model.bound.problem import bound_problem
+from loader_model.bound.replay import replay
+from loader_model.bound.weighting import seat_weighting
+from loader_model.plant.scenario import PlantScenario, resolve_plant
+from loader_model.simulation.courses import Course
+from loader_model.simulation.roads import board_course
+from loader_model.simulation.scenario import closed_loop, ride_scenario
+from loader_model.simulation.simulator import course_input, simulate
+
+
+@pytest.fixture(scope="module")
+def plant() -> PlantScenario:
+    return resolve_plant(None, "empty")
+
+
+@pytest.fixture(scope="module")
+def road(plant):
+    course = Course(
+        board_course(1, height_m=0.005, width_m=0.14, spacing_m=0.0), 2.5, -0.3, 2.0, ""
+    )
+    return course_input(course, plant)
+
+
+@pytest.fixture(scope="module")
+def problem(plant, road):
+    return bound_problem(plant, road, duration_s=3.0)
+
+
+def _seat(result, weighting):
+    return np.column_stack([result[s] - result[s][0] for s in weighting.signals])
+
+
+def test_sampled_weighting_reads_the_reports_a_total(plant, road):
+    """The bound's filters (exact ZOH sampling of Annex A) against the report's evaluation."""
+    weighting = seat_weighting()
+    for controller in ("baseline", "skyhook"):
+        result = simulate(road, ride_scenario(plant, controller), duration_s=3.0)
+        reference = result.seat_evaluation().total_m_s2
+        assert weighting.a_total(_seat(result, weighting)) == pytest.approx(reference, rel=2e-4)
+
+
+def test_interval_maps_match_the_recursion():
+    weighting = seat_weighting()
+    rng = np.random.default_rng(1)
+    samples = rng.normal(size=(7, len(weighting.axes)))
+    l_xi, l_a, r_xi, r_a = weighting.interval_maps(7)
+    assert np.allclose(l_a @ samples.ravel(), weighting.states(samples)[-1])
+    assert np.allclose((r_a @ samples.ravel()).reshape(7, -1), weighting.weighted(samples))
+    assert np.allclose(l_xi, np.linalg.matrix_power(weighting.phi, 7))
+    assert r_xi.shape == (7 * len(weighting.axes), weighting.order)
+
+
+def test_riccati_sweep_matches_the_sparse_kkt_solve(problem):
+    riccati = solve_linear_bound(problem, "riccati")
+    kkt = solve_linear_bound(problem, "kkt")
+    assert riccati.a_total_m_s2 == pytest.approx(kkt.a_total_m_s2, rel=1e-9)
+    assert np.allclose(riccati.command, kkt.command, rtol=1e-6, atol=1e-9 * problem.u_bounds[1])
+    assert np.max(np.abs(riccati.end_residual)) < 1e-9
+
+
+def test_lq_optimum_is_optimal_under_perturbation(problem):
+    """Finite perturbations of the optimal command only raise the linear plant's a_total."""
+    lq = linear_quadratic(problem)
+    bound = solve_linear_bound(problem)
+    optimum = bound.command / lq.u_scale
+    zero = evaluate(lq, np.zeros_like(optimum), problem)[0]
+    assert bound.a_total_m_s2 < 0.8 * zero
+    rng = np.random.default_rng(0)
+    for _ in range(3):
+        step = 1e-3 * rng.normal(size=optimum.size)
+        assert evaluate(lq, optimum + step, problem)[0] >= bound.a_total_m_s2 - 1e-12
+
+
+def test_linear_model_at_zero_command_is_close_to_the_simulator(plant, road, problem):
+    """The LQ problem's free response against the nonlinear baseline on 5 mm: within 5 %."""
+    lq = linear_quadratic(problem)
+    linear = evaluate(lq, np.zeros(problem.intervals), problem)[0]
+    baseline = simulate(road, closed_loop(plant), duration_s=problem.duration_s)
+    nonlinear = seat_weighting().a_total(_seat(baseline, seat_weighting()))
+    assert linear == pytest.approx(nonlinear, rel=0.05)
+
+
+def test_playback_of_the_static_command_is_the_baseline(plant, road, problem):
+    table = np.full(problem.intervals, plant.u0)
+    played = replay(plant, road, table, problem.hold_periods)
+    baseline = simulate(road, closed_loop(plant), duration_s=problem.duration_s)
+    assert np.allclose(played["f_Sy"], baseline["f_Sy"], rtol=0, atol=1e-12)
+
+
+def test_playback_holds_each_value_for_its_interval(plant, road):
+    table = plant.u0 + np.array([0.0, 1e-6, -1e-6, 2e-6] * 75)
+    played = replay(plant, road, table, 10)
+    assert np.array_equal(played["V_p_ref"], np.repeat(table, 10))
+
+
+def test_bad_inputs_name_the_argument(plant, road):
+    with pytest.raises(ValueError, match="hold_periods"):
+        bound_problem(plant, road, hold_periods=0)
+    with pytest.raises(ValueError, match="max_intervals"):
+        bound_problem(plant, road, max_intervals=10)
+    params = plant.params.copy()
+    from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
+
+    params[PLANT_PARAMETER_NAMES.index("V_p_max")] = 0.0
+    zero_pump = dataclasses.replace(plant, params=params)
+    with pytest.raises(ValueError, match="V_p_max"):
+        bound_problem(zero_pump, road)
+
+
+def test_command_rejects_an_unknown_controller(capsys):
+    from loader_model.cli import main
+
+    assert main(["bound", "--controllers", "baseline,nope"]) == 2
+    assert "--controllers" in capsys.readouterr().err
