@@ -7,7 +7,7 @@ STAMP := $(VENV)/.installed
 LOCK := requirements-lock.txt
 PIP_QUIET := --quiet --disable-pip-version-check
 
-.PHONY: setup lock regenerate calibrate gains bound lint test test-slow bench reproduce docs clean
+.PHONY: setup lock regenerate calibrate calibrate-table6 fidelity gains bound lint test test-slow bench reproduce docs clean
 
 $(STAMP): pyproject.toml $(LOCK)
 	$(PYTHON) -m venv $(VENV)
@@ -54,6 +54,17 @@ test: setup lint
 ## test-slow: the tests marked slow (full regeneration, independent derivation, wheel install)
 test-slow: setup
 	$(PY) -m pytest -m slow -q
+
+## calibrate-table6: fit the estimated parameters to Table 6's 9 km/h cells (18 km/h held out) and
+## the other way round; ships the two calibrated loader files (minutes)
+calibrate-table6: setup
+	$(VENV)/bin/loader-model calibrate-table6 --fit-speed 9 --output loader_model/data/loader_calibrated_table6_9kmh.toml --summary loader_model/data/calibration_table6_9kmh.json
+	$(VENV)/bin/loader-model calibrate-table6 --fit-speed 18 --output loader_model/data/loader_calibrated_table6_18kmh.toml --summary loader_model/data/calibration_table6_18kmh.json
+
+## fidelity: the fidelity budget of Table 6 and the uncertainty study over the estimated
+## parameters; ships loader_model/data/fidelity_budget.json (minutes; the report renders it)
+fidelity: setup
+	$(VENV)/bin/loader-model fidelity --output loader_model/data/fidelity_budget.json
 
 ## gains: refine the skyhook gains on the nonlinear paper course (both loads, 9 km/h) and ship them
 gains: setup

@@ -16,6 +16,7 @@ COMMANDS: dict[str, str] = {
     "model": "loader_model.commands.model_command",
     "modes": "loader_model.commands.modes_command",
     "calibrate": "loader_model.commands.calibrate_command",
+    "calibrate-table6": "loader_model.commands.calibrate_table6_command",
     "iso2631": "loader_model.commands.iso2631_command",
     "hydraulics": "loader_model.commands.hydraulics_command",
     "identify": "loader_model.commands.identify_command",
@@ -25,6 +26,7 @@ COMMANDS: dict[str, str] = {
     "design": "loader_model.commands.design_command",
     "robustness": "loader_model.commands.robustness_command",
     "bound": "loader_model.commands.bound_command",
+    "fidelity": "loader_model.commands.fidelity_command",
 }
 
 

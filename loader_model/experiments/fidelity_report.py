@@ -1,0 +1,176 @@
+"""The report's fidelity sections, rendered from the shipped budget and this run's trials.
+
+- :func:`budget_section`: the fidelity budget of :mod:`~loader_model.experiments.fidelity` (one
+  modelling step at a time), the calibrated values and the uncertainty study, from the JSON that
+  ``make fidelity`` ships (``data/fidelity_budget.json``);
+- :func:`comfort_rows`: this run's absolute a_total per condition and controller beside
+  ISO 2631-1 Annex C's likely reactions (:func:`~loader_model.iso2631.comfort.comfort_reaction`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from importlib import resources
+from typing import Any
+
+import numpy as np
+
+from loader_model.experiments.report import markdown_table
+from loader_model.experiments.tables import Rows
+
+__all__ = ["BUDGET_FILE", "budget_section", "comfort_rows", "shipped_budget"]
+
+#: The shipped budget (package data).
+BUDGET_FILE = "fidelity_budget.json"
+_ROW_CONTROLLERS = ("passive", "virtual-accumulator", "skyhook")
+
+
+def shipped_budget() -> dict[str, Any] | None:
+    """The shipped budget, or None if it was never made."""
+    from loader_model.experiments.fidelity import read_budget
+
+    entry = resources.files("loader_model").joinpath("data", BUDGET_FILE)
+    if not entry.is_file():
+        return None
+    with resources.as_file(entry) as path:
+        return read_budget(path)
+
+
+def _interval(cell: dict[str, float]) -> str:
+    return f"{cell['change']:+.1f} [{cell['low']:+.1f}, {cell['high']:+.1f}]"
+
+
+def _step_rows(steps: Sequence[dict[str, Any]]) -> Rows:
+    rows: Rows = [
+        [
+            "step",
+            "cells within 10 pp",
+            "held-out cells within 10 pp",
+            *(f"9 km/h empty {c} Δ [%] [95 % CI]" for c in _ROW_CONTROLLERS),
+            "significant findings in sign (and p < 0.05)",
+            "baseline a_total 9 km/h empty / full, 18 km/h empty / full [m/s²]",
+        ]
+    ]
+    for step in steps:
+        held = (
+            f"{step['held_out_within']} of {step['held_out_count']} ({step['held_out_kmh']:g} km/h)"
+            if step.get("held_out_count")
+            else "-"
+        )
+        base = step["baseline_a_total"]
+        levels = " / ".join(
+            f"{base.get(k, float('nan')):.2f}" for k in ("9/empty", "9/full", "18/empty", "18/full")
+        )
+        rows.append(
+            [
+                step["label"],
+                f"{step['within']} of {step['count']}",
+                held,
+                *(_interval(step["cells"][f"9/empty/{c}"]) for c in _ROW_CONTROLLERS),
+                f"{step['significant_in_sign']} of {step['significant_count']} "
+                f"({step['significant_in_sign_and_p']})",
+                levels,
+            ]
+        )
+    return rows
+
+
+def _value_rows(steps: Sequence[dict[str, Any]]) -> Rows:
+    from loader_model.experiments.calibration_table6 import estimated_parameters, shipped_value
+
+    fits = [s for s in steps if s.get("held_out_kmh") is not None]
+    rows: Rows = [
+        ["parameter", "shipped (estimate)", *(s["label"].removeprefix("+ ") for s in fits), "range"]
+    ]
+    for path, distribution in estimated_parameters():
+        low, high = distribution.low, distribution.high
+        cells = []
+        for step in fits:
+            value = step["values"].get(path, float("nan"))
+            span = np.log(high / low) if distribution.kind == "loguniform" else high - low
+            where = np.log(value / low) if distribution.kind == "loguniform" else value - low
+            flag = " (at a bound)" if not 0.01 <= where / span <= 0.99 else ""
+            cells.append(f"{value:.4g}{flag}")
+        rows.append([path, f"{shipped_value(path):.4g}", *cells, f"[{low:.4g}, {high:.4g}]"])
+    return rows
+
+
+def _uncertainty_rows(uncertainty: dict[str, Any]) -> Rows:
+    rows: Rows = [
+        [
+            "cell (speed/load/controller)",
+            "paper Δ [%]",
+            "share with the paper's sign",
+            "runs (failed)",
+        ]
+    ]
+    for key, cell in uncertainty["cells"].items():
+        share = cell["share"]
+        shown = "-" if not np.isfinite(share) else f"{100 * share:.0f} %"
+        rows.append([key, f"{cell['paper']:+.1f}", shown, f"{cell['count']} ({cell['failed']})"])
+    return rows
+
+
+def budget_section(budget: dict[str, Any] | None) -> tuple[str, dict[str, Rows]]:
+    """Markdown of the budget and its tables (for the CSV files); a note if none was shipped."""
+    if budget is None:
+        return (
+            "## Fidelity budget\n\nNo budget shipped: run `make fidelity` (after "
+            "`make calibrate-table6`).\n",
+            {},
+        )
+    steps = budget["steps"]
+    tables = {
+        "fidelity_budget": _step_rows(steps),
+        "calibrated_values": _value_rows(steps),
+        "uncertainty": _uncertainty_rows(budget["uncertainty"]),
+    }
+    text = "\n".join(
+        [
+            "## Fidelity budget: one modelling step at a time\n",
+            f"Shipped result `loader_model/data/{BUDGET_FILE}`, made by `{budget['command']}` "
+            f"on {budget['date']} in {budget['wall_time_s']:.0f} s (`make fidelity`; a slow test "
+            "checks that it is current). Each step runs the whole Table 6 matrix with the "
+            "report's seeds; the steps add up: Table 5's flow as a cylinder leak, the seat on "
+            "the rigid chassis, rigid-wheel tyres and Table 3 as printed (as it was); then the "
+            "load-holding valves closed while the pump is idle (errata 11); the seat pad under "
+            "an occupant (errata 13); the tandem-cam tyres (errata 13); k_φ = +0.22 (errata 12): "
+            "the model as built, which the Table 6 above runs. The calibrated steps fit the "
+            "estimated parameters (`data/table6_estimates.toml`, `make calibrate-table6`) to one "
+            "speed's six cells and hold the other speed's out. The paper's significant findings "
+            "are its nine cells with p < 0.05.\n",
+            markdown_table(tables["fidelity_budget"]) + "\n",
+            "Calibrated values (one set for all cells; Sobol design then Nelder-Mead inside the "
+            "plausible ranges, one trial per cell):\n",
+            markdown_table(tables["calibrated_values"]) + "\n",
+            f"Uncertainty: {budget['uncertainty']['samples']} machines drawn over the estimated "
+            "parameters' ranges (Latin hypercube, `loader-model robustness "
+            "loader_model/data/table6_estimates.toml`), each on one speed and load with every "
+            "controller against its own baseline; per cell the share whose change has the "
+            "paper's sign:\n",
+            markdown_table(tables["uncertainty"]) + "\n",
+        ]
+    )
+    return text, tables
+
+
+def comfort_rows(outcomes: Sequence[Any], controllers: Sequence[str]) -> Rows:
+    """Mean a_total [m/s²] per condition and controller with ISO 2631-1 Annex C's reaction."""
+    from loader_model.iso2631.comfort import comfort_reaction
+
+    totals: dict[tuple[float, str, str], list[float]] = {}
+    for o in outcomes:
+        key = (o.spec.speed_kmh, o.spec.load, o.spec.controller)
+        totals.setdefault(key, []).append(o.a_total_m_s2)
+    rows: Rows = [["speed", "load", *(f"{c} a_total [m/s²]" for c in controllers)]]
+    for speed, load in sorted({(s, ld) for s, ld, _ in totals}):
+        row = [f"{speed:g} km/h", load]
+        for controller in controllers:
+            values = totals.get((speed, load, controller))
+            if values is None:
+                row.append("-")
+                continue
+            mean = float(np.mean(values))
+            row.append(f"{mean:.2f} ({comfort_reaction(mean)})")
+        rows.append(row)
+    return rows

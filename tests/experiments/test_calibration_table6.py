@@ -1,0 +1,86 @@
+"""The Table 6 calibration: its targets, its cost, its search box and the held-out cells."""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+import pytest
+
+from loader_model.experiments import calibration_table6 as calibration
+from loader_model.experiments import table6
+from loader_model.experiments.table6 import PAPER_TABLE_6
+
+
+def _outcome(load: str, controller: str, a_total: float) -> SimpleNamespace:
+    return SimpleNamespace(
+        spec=SimpleNamespace(load=load, controller=controller), a_total_m_s2=a_total
+    )
+
+
+def test_targets_are_the_fitted_speeds_cells_only() -> None:
+    nine = calibration.paper_targets(9.0)
+    assert nine[("empty", "skyhook")] == -33.6 and nine[("full", "virtual-accumulator")] == 6.0
+    assert len(nine) == 6 and len(calibration.paper_targets(18.0)) == 6
+    assert calibration.paper_targets(18.0)[("full", "passive")] == -10.7
+    with pytest.raises(ValueError, match="speed_kmh 12"):
+        calibration.paper_targets(12)
+
+
+def test_mean_changes_and_cost_against_a_hand_computation() -> None:
+    outcomes = [
+        _outcome("empty", "baseline", 4.0),
+        _outcome("empty", "baseline", 6.0),
+        _outcome("empty", "skyhook", 4.0),
+        _outcome("empty", "passive", 6.0),
+    ]
+    changes = calibration.mean_changes(outcomes)
+    assert changes == {
+        ("empty", "skyhook"): pytest.approx(-20.0),
+        ("empty", "passive"): pytest.approx(20.0),
+    }
+    targets = {("empty", "skyhook"): -30.0, ("empty", "passive"): 0.0}
+    assert calibration.table6_cost(changes, targets) == pytest.approx(1.0**2 + 2.0**2)
+    with pytest.raises(ValueError, match="no model cells"):
+        calibration.table6_cost(changes, {("full", "skyhook"): 1.0})
+
+
+def test_the_search_box_maps_the_shipped_values_and_the_bounds() -> None:
+    for path, distribution in calibration.estimated_parameters():
+        value = calibration.shipped_value(path)
+        u = calibration._to_unit(distribution, value, path)
+        assert 0.0 < u < 1.0, path
+        assert calibration._to_value(distribution, u) == pytest.approx(value, rel=1e-12)
+        assert calibration._to_value(distribution, 0.0) == pytest.approx(distribution.low)
+        assert calibration._to_value(distribution, 1.0) == pytest.approx(distribution.high)
+        assert distribution.source.startswith("estimate")
+
+
+def test_the_fit_never_reads_the_held_out_cells(monkeypatch) -> None:
+    """Garbage in the 18 km/h cells of the paper's table changes nothing, and no 18 km/h trial
+    runs, when fitting the 9 km/h cells (a small budget on a short drive)."""
+    speeds: set[float] = set()
+    run_trial = table6.run_trial
+
+    def spy(spec):
+        speeds.add(spec.speed_kmh)
+        return run_trial(spec)
+
+    monkeypatch.setattr(table6, "run_trial", spy)
+    options = {"evaluations": 4, "design_points": 2, "trials": 1, "jobs": 1, "duration_s": 3.0}
+    honest = calibration.calibrate_table6(9.0, progress=False, **options)
+    poisoned = {key: dict(cells) for key, cells in PAPER_TABLE_6.items()}
+    for key in (("High", "Low"), ("High", "High")):
+        poisoned[key] = {c: (math.nan, math.nan) for c in poisoned[key]}
+    monkeypatch.setattr(table6, "PAPER_TABLE_6", poisoned)
+    blind = calibration.calibrate_table6(9.0, progress=False, **options)
+    assert speeds == {9.0}
+    assert blind == honest and math.isfinite(blind.cost)
+    assert blind.cost <= blind.start_cost
+
+
+def test_bad_budgets_are_named() -> None:
+    with pytest.raises(ValueError, match="design_points 3: allowed: a power of 2"):
+        calibration.calibrate_table6(9.0, design_points=3, progress=False)
+    with pytest.raises(ValueError, match="evaluations 5: allowed: at least"):
+        calibration.calibrate_table6(9.0, evaluations=5, design_points=4, progress=False)

@@ -1,0 +1,75 @@
+"""The shipped Table 6 calibration and fidelity budget are current (slow: they re-run trials).
+
+``make calibrate-table6`` and ``make fidelity`` write these files; when the model changes, the
+numbers below move and these tests say which file to remake. The simulated trials are
+deterministic (seeded, fixed-step), so the tolerances cover library round-off only.
+"""
+
+from __future__ import annotations
+
+import json
+from importlib import resources
+
+import numpy as np
+import pytest
+
+from loader_model.experiments import calibration_table6 as calibration
+from loader_model.experiments.fidelity import budget_steps, run_budget
+from loader_model.experiments.fidelity_report import shipped_budget
+from loader_model.experiments.variant import AS_BUILT
+
+pytestmark = pytest.mark.slow
+
+#: J is a sum of six squared misfits of about 1-5 each; 1e-6 relative is far above round-off of
+#: the fixed-step trials and far below any model change (which moves J in the first digits).
+COST_RTOL = 1e-6
+#: Percentage points within which a recomputed budget cell must equal the shipped one.
+CELL_TOLERANCE_PP = 0.05
+
+
+def _summary(speed: float) -> dict:
+    name = f"calibration_table6_{speed:g}kmh.json"
+    return json.loads(resources.files("loader_model").joinpath("data", name).read_text("utf-8"))
+
+
+def _cost(speed: float, values: dict[str, float]) -> float:
+    """J at ``values`` with the settings of the shipped fit (its own evaluation path)."""
+    from loader_model.experiments.table6 import run_trials
+    from loader_model.experiments.trials import trial_specs
+
+    summary = _summary(speed)
+    assert "--trials 1 --seed 0" in summary["command"]
+    specs = trial_specs(0, 1, speeds_kmh=(speed,), variant=AS_BUILT.with_values(values))
+    changes = calibration.mean_changes(run_trials(specs, jobs=2, progress=False))
+    return calibration.table6_cost(changes, calibration.paper_targets(speed))
+
+
+@pytest.mark.parametrize("speed", [9.0, 18.0])
+def test_the_shipped_calibration_is_current(speed: float) -> None:
+    summary = _summary(speed)
+    shipped = calibration.shipped_calibration(speed)
+    assert shipped == pytest.approx(summary["values"], rel=1e-12)
+    assert _cost(speed, summary["start"]) == pytest.approx(summary["start_cost"], rel=COST_RTOL)
+    assert _cost(speed, shipped) == pytest.approx(summary["cost"], rel=COST_RTOL)
+    assert summary["cost"] <= summary["start_cost"]
+
+
+def test_the_shipped_budget_is_current() -> None:
+    """The model as built and the 9 km/h calibration, recomputed, equal the shipped steps."""
+    budget = shipped_budget()
+    assert budget is not None, "run make fidelity"
+    trials = int(budget["command"].split("--trials ")[1].split()[0])
+    calibrated = {speed: calibration.shipped_calibration(speed) for speed in (9.0, 18.0)}
+    steps = {step.label: step for step in budget_steps(calibrated)}
+    shipped = {step["label"]: step for step in budget["steps"]}
+    assert list(shipped) == list(steps)
+    labels = ["+ k_φ sign (as built)", "+ calibrated to 9 km/h"]
+    for summary in run_budget([steps[label] for label in labels], trials=trials, progress=False):
+        want = shipped[summary["label"]]
+        for key, cell in summary["cells"].items():
+            assert cell["change"] == pytest.approx(
+                want["cells"][key]["change"], abs=CELL_TOLERANCE_PP
+            ), (summary["label"], key)
+        assert summary["within"] == want["within"]
+        for key, value in summary["baseline_a_total"].items():
+            assert np.isclose(value, want["baseline_a_total"][key], rtol=1e-6), key
