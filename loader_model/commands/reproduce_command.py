@@ -57,6 +57,7 @@ def run(args: argparse.Namespace) -> int:
     import os
     from pathlib import Path
 
+    from loader_model.bound.table6 import render_markdown
     from loader_model.experiments.report import ReportOptions, markdown_table, write_report
     from loader_model.experiments.reproduction import build_reproduction
     from loader_model.io.interrupts import keeping
@@ -73,6 +74,7 @@ def run(args: argparse.Namespace) -> int:
         jobs=args.jobs,
         progress=not args.no_progress,
         envelope=args.envelope,
+        appendix=(render_markdown(),),
     )
     summary: dict = {}
 

@@ -148,6 +148,11 @@ class CalibrationResult:
     evaluations: int
 
 
+def _grid(u: np.ndarray) -> tuple[float, ...]:
+    """The search point as evaluated: clipped to the box and rounded to 1e-12."""
+    return tuple(float(x) for x in np.round(np.clip(u, 0.0, 1.0), 12))
+
+
 def _to_value(distribution: Any, u: float) -> float:
     low, high = distribution.low, distribution.high
     if distribution.kind == "loguniform":
@@ -257,7 +262,7 @@ def calibrate_table6(
         return table6_cost(mean_changes(run_trials(specs, jobs=jobs, progress=False)), targets)
 
     def cost(u: np.ndarray) -> float:
-        key = tuple(np.round(np.clip(u, 0.0, 1.0), 12))
+        key = _grid(u)
         if key not in memo:
             try:
                 candidate = variant.with_values(values_at(np.array(key)))
@@ -270,7 +275,7 @@ def calibrate_table6(
     try:
         # the shipped values must run: a refusal here is an error, not a cost
         start_cost = float((evaluate or run)(variant.with_values(values_at(u0))))
-        memo[tuple(np.round(np.clip(u0, 0.0, 1.0), 12))] = start_cost
+        memo[_grid(u0)] = start_cost
         bar.update(1)
         sobol = qmc.Sobol(len(paths), scramble=True, rng=np.random.default_rng(seed))
         design = sobol.random(design_points)
@@ -291,7 +296,8 @@ def calibrate_table6(
         final = min(float(result.fun), best)
     finally:
         bar.close()
-    values = values_at(final_u)
+    # the values J was evaluated at: a failed integration step can turn on the last digits
+    values = values_at(np.array(_grid(final_u)))
     at_bounds = tuple(p for p, x in zip(paths, final_u, strict=True) if x < 0.01 or x > 0.99)
     return CalibrationResult(
         fit_speed_kmh=float(fit_speed_kmh),

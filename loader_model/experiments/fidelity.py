@@ -113,15 +113,23 @@ def run_budget(
     steps: list[BudgetStep], *, trials: int = 4, seed: int = 0, jobs: int = 2, progress: bool = True
 ) -> list[dict[str, Any]]:
     """Run the Table 6 matrix on every step; returns :func:`step_summary` per step, with the
-    baseline's mean a_total per condition."""
+    baseline's mean a_total per condition and the trials the simulator stopped (listed, left
+    out of the cells: a run outside the model's validity is not a result)."""
     from loader_model.experiments.table6 import run_trials, table6_cells
     from loader_model.experiments.trials import trial_specs
 
     summaries = []
     for step in steps:
         specs = trial_specs(seed, trials, variant=step.variant)
-        outcomes = run_trials(specs, jobs=jobs, progress=progress)
+        every = run_trials(specs, jobs=jobs, progress=progress, keep_failures=True)
+        outcomes = [o for o in every if np.isfinite(o.a_total_m_s2)]
         summary = step_summary(step, table6_cells(outcomes))
+        summary["failed_trials"] = [
+            f"{o.spec.speed_kmh:g}/{o.spec.load}/{o.spec.controller}/trial {o.spec.trial}: "
+            f"{o.weighted_rms['failed']}"
+            for o in every
+            if not np.isfinite(o.a_total_m_s2)
+        ]
         baseline: dict[str, list[float]] = {}
         for o in outcomes:
             if o.spec.controller == "baseline":

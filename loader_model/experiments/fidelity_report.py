@@ -49,6 +49,7 @@ def _step_rows(steps: Sequence[dict[str, Any]]) -> Rows:
             *(f"9 km/h empty {c} Δ [%] [95 % CI]" for c in _ROW_CONTROLLERS),
             "significant findings in sign (and p < 0.05)",
             "baseline a_total 9 km/h empty / full, 18 km/h empty / full [m/s²]",
+            "trials stopped by the validity checks",
         ]
     ]
     for step in steps:
@@ -70,9 +71,26 @@ def _step_rows(steps: Sequence[dict[str, Any]]) -> Rows:
                 f"{step['significant_in_sign']} of {step['significant_count']} "
                 f"({step['significant_in_sign_and_p']})",
                 levels,
+                str(len(step.get("failed_trials", []))),
             ]
         )
     return rows
+
+
+def _stopped(steps: Sequence[dict[str, Any]]) -> str:
+    """The trials the simulator stopped, per step (left out of the cells)."""
+    lines = [
+        f"- {step['label']}: {failure}"
+        for step in steps
+        for failure in step.get("failed_trials", [])
+    ]
+    if not lines:
+        return "No trial left the model's range of validity.\n"
+    return (
+        "Trials stopped by the validity checks, left out of their cells:\n\n"
+        + "\n".join(lines)
+        + "\n"
+    )
 
 
 def _value_rows(steps: Sequence[dict[str, Any]]) -> Rows:
@@ -140,6 +158,7 @@ def budget_section(budget: dict[str, Any] | None) -> tuple[str, dict[str, Rows]]
             "speed's six cells and hold the other speed's out. The paper's significant findings "
             "are its nine cells with p < 0.05.\n",
             markdown_table(tables["fidelity_budget"]) + "\n",
+            _stopped(steps),
             "Calibrated values (one set for all cells; Sobol design then Nelder-Mead inside the "
             "plausible ranges, one trial per cell):\n",
             markdown_table(tables["calibrated_values"]) + "\n",

@@ -36,7 +36,9 @@ FIDELITY_POINTS = 10.0
 
 @dataclass(frozen=True)
 class ReportOptions:
-    """What the report runs: trials per cell, base seed, worker processes, progress bar."""
+    """What the report runs: trials per cell, base seed, worker processes, progress bar, the
+    tyres' envelope, and ``appendix``: Markdown sections from the layers above (the bound of
+    :mod:`loader_model.bound`, which the experiments do not import), placed before the timings."""
 
     trials: int = 4
     seed: int = 0
@@ -44,6 +46,7 @@ class ReportOptions:
     progress: bool = True
     duration_s: float | None = None
     envelope: str = "tandem-cam"
+    appendix: tuple[str, ...] = ()
 
 
 def table6_rows(cells: list[Table6Cell]) -> Rows:

@@ -253,6 +253,7 @@ def _markdown(options, tables, within, count, lifts, timings, budget) -> str:
         "test; the 18 km/h rows are.\n",
         markdown_table(tables["designed"]) + "\n",
         discrepancy_section(tables, within, count, lifts, budget[1]),
+        *(section + "\n" for section in options.appendix),
         "## Timings (this run)\n",
         markdown_table([["stage", "wall time [s]"]] + [[k, f"{v:.1f}"] for k, v in timings.items()])
         + "\n",

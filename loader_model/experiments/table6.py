@@ -77,6 +77,20 @@ def _run_chunk(specs: list[TrialSpec]) -> list[TrialOutcome]:
     return [run_trial(spec) for spec in specs]
 
 
+def _run_chunk_keeping_failures(specs: list[TrialSpec]) -> list[TrialOutcome]:
+    """As :func:`_run_chunk`, but a trial the simulator stops (a failed step, a run outside the
+    model's validity) gives an outcome with a NaN a_total and the reason, instead of raising."""
+    from loader_model.simulation.validity_check import SimulationError
+
+    outcomes = []
+    for spec in specs:
+        try:
+            outcomes.append(run_trial(spec))
+        except SimulationError as error:
+            outcomes.append(TrialOutcome(spec, float("nan"), {"failed": str(error)[:300]}, -1))
+    return outcomes
+
+
 def _one_blas_thread() -> None:
     """Pool worker start: one BLAS thread. A trial's linear algebra is small; with threaded BLAS
     in two workers on two cores the 64-run matrix took 8.6 s instead of 4.7 s (measured)."""
@@ -90,6 +104,7 @@ def run_trials(
     jobs: int = 2,
     progress: bool = True,
     meanwhile: Callable[[], None] | None = None,
+    keep_failures: bool = False,
 ) -> list[TrialOutcome]:
     """Run ``specs`` on ``jobs`` processes (1: in this process), in the order given.
 
@@ -98,7 +113,9 @@ def run_trials(
     BLAS thread per process (:func:`_one_blas_thread`). The workers end with this process
     (:func:`~loader_model.io.processes.worker_pool`): an interrupt or an error stops them at once.
     ``meanwhile`` runs in this process while the workers simulate (or after the trials, with
-    ``jobs`` = 1), so that the calling process does useful work instead of waiting.
+    ``jobs`` = 1), so that the calling process does useful work instead of waiting. With
+    ``keep_failures`` a trial the simulator stops comes back with a NaN a_total (the reason in
+    its ``weighted_rms["failed"]``) instead of stopping the run.
     """
     from tqdm import tqdm
 
@@ -109,6 +126,7 @@ def run_trials(
         groups.setdefault((spec.load, spec.controller), []).append(index)
     batches = [[specs[i] for i in indices] for indices in groups.values()]
     outcomes: dict[TrialSpec, TrialOutcome] = {}
+    chunk = _run_chunk_keeping_failures if keep_failures else _run_chunk
     bar = tqdm(total=len(specs), desc="Table 6 trials", unit="trial", disable=not progress)
 
     def collect(results: list[TrialOutcome]) -> None:
@@ -122,12 +140,12 @@ def run_trials(
 
             with threadpool_limits(1):
                 for batch in batches:
-                    collect(_run_chunk(batch))
+                    collect(chunk(batch))
             if meanwhile is not None:
                 meanwhile()
         else:
             with worker_pool(jobs, initializer=_one_blas_thread) as pool:
-                futures = [pool.submit(_run_chunk, batch) for batch in batches]
+                futures = [pool.submit(chunk, batch) for batch in batches]
                 if meanwhile is not None:
                     meanwhile()
                 for future in pool.completed(futures):

@@ -20,9 +20,12 @@ from loader_model.experiments.variant import AS_BUILT
 
 pytestmark = pytest.mark.slow
 
-#: J is a sum of six squared misfits of about 1-5 each; 1e-6 relative is far above round-off of
-#: the fixed-step trials and far below any model change (which moves J in the first digits).
-COST_RTOL = 1e-6
+#: J is a sum of six squared misfits of about 0.5-5 each. The trials are sensitive to the last
+#: digits of the parameters through the tyres' lift-offs: the shipped estimates through the fit's
+#: log/linear search scale and back (a change of 1e-16 relative) moved J by 1.4e-5 (9 km/h) and
+#: 1.0e-4 (18 km/h) relative (measured). 2e-3 holds that with margin; a model change moves J in
+#: its first or second digit.
+COST_RTOL = 2e-3
 #: Percentage points within which a recomputed budget cell must equal the shipped one.
 CELL_TOLERANCE_PP = 0.05
 
