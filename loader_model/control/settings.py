@@ -253,17 +253,22 @@ def settings_vector_for_plant(
     pressure_norm: float,
     *,
     hold_command: float | None = None,
+    machine: str | None = None,
 ) -> np.ndarray:
     """:func:`settings_vector` with V_p,max, g and N_x from the plant parameter vector ``params``
     and the holding command from its static equilibrium (boom angle φ0 = 0, the plant's origin).
 
     ``hold_command``: the equilibrium's u0 when the caller has it
-    (:class:`~loader_model.plant.scenario.PlantScenario`); default: computed from ``params``."""
+    (:class:`~loader_model.plant.scenario.PlantScenario`); default: computed from ``params``.
+    ``machine``: the plant's machine (default the skid-steer)."""
+    from loader_model.machines import DEFAULT_MACHINE
     from loader_model.plant.equilibrium import static_state
-    from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
+    from loader_model.plant.layout import plant_layout
 
-    named = dict(zip(PLANT_PARAMETER_NAMES, np.asarray(params, dtype=float), strict=True))
-    hold = static_state(params)[1] if hold_command is None else float(hold_command)
+    machine = machine or DEFAULT_MACHINE
+    names = plant_layout(machine).parameter_names
+    named = dict(zip(names, np.asarray(params, dtype=float), strict=True))
+    hold = static_state(params, machine)[1] if hold_command is None else float(hold_command)
     return settings_vector(
         settings,
         pressure_norm=pressure_norm,

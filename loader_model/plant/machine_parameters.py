@@ -21,10 +21,25 @@ from loader_model.machines import machine as machine_info
 from loader_model.plant.layout import plant_layout
 from loader_model.plant.plant_parameters import PlantOptions, plant_parameter_vector
 
-__all__ = ["PRECHARGE_FRACTION", "machine_plant_parameter_vector", "precharge_pressure"]
+__all__ = [
+    "PRECHARGE_FRACTION",
+    "PRESSURE_NORM_FACTOR",
+    "machine_plant_parameter_vector",
+    "precharge_pressure",
+    "pressure_norm",
+]
 
 #: Accumulator precharge / static piston pressure of the lightest load (the skid-steer's 50/89).
 PRECHARGE_FRACTION = 0.56
+#: ‖p_A‖∞ of the controllers' normalisation / the static piston pressure of the load, for a
+#: machine without the paper's norms (the skid-steer: 100/89 = 1.12 empty, 200/130 = 1.54 full).
+PRESSURE_NORM_FACTOR = 1.5
+
+
+def pressure_norm(static_piston_pressure_pa: float) -> float:
+    """‖p_A‖∞ [Pa] of a machine other than the skid-steer: :data:`PRESSURE_NORM_FACTOR` times
+    its static piston pressure (the skid-steer's loads carry the paper's 100 and 200 bar)."""
+    return PRESSURE_NORM_FACTOR * float(static_piston_pressure_pa)
 
 
 @cache
