@@ -221,7 +221,12 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
     if args.output is not None:
         import datetime
 
-        from loader_model.control.settings import default_settings, save_settings, with_gains
+        from loader_model.control.settings import (
+            default_settings,
+            save_settings,
+            with_gains,
+            with_scaled_gains,
+        )
 
         source = (
             f"loader-model design --method {args.method}"
@@ -232,8 +237,9 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
             f"{f' --evaluations {args.evaluations}' if args.method == 'refine' else ''} "
             f"on {datetime.date.today().isoformat()}{course_note}"
         )
+        scaled = with_scaled_gains if machine != "skid_steer" else with_gains
         save_settings(
-            with_gains(default_settings(), final, source),
+            scaled(default_settings(), final, source),
             args.output,
             header="Controller settings with designed skyhook gains (loader-model design).",
         )

@@ -40,6 +40,7 @@ __all__ = [
     "settings_vector",
     "settings_vector_for_plant",
     "with_gains",
+    "with_scaled_gains",
 ]
 
 #: Order of the ``settings`` input of every controller Function.
@@ -160,6 +161,31 @@ def with_gains(settings: ControllerSettings, k_fb: object, source: str) -> Contr
         "source": source,
     }
     return _parse(dumps(raw), "designed gains")
+
+
+def with_scaled_gains(
+    settings: ControllerSettings, k_fb: object, source: str, limit: float = 50.0
+) -> ControllerSettings:
+    """:func:`with_gains`, with the feedback norms scaled so that every gain is at most
+    ``limit`` in magnitude: the same control law (a gain k on a signal normalised by n is the
+    gain k c on the signal normalised by n c). The linear-acceleration norm is shared by k_x and
+    k_y, the angular-acceleration norm belongs to k_θ, the angle norm to k_φ; a norm is only
+    made smaller (c ≤ 1). For machines whose designed gains exceed the file's range of ±100."""
+    gains = np.asarray(k_fb, dtype=float).ravel()
+    raw = to_raw(settings)
+    groups = (("linear_acceleration_norm", (0, 1)), ("angular_acceleration_norm", (2,)),
+              ("angle_norm", (3,)))  # fmt: skip
+    for name, members in groups:
+        largest = max(abs(gains[i]) for i in members)
+        if largest > limit:
+            factor = float(limit / largest)
+            gains[list(members)] *= factor
+            raw[name] = {
+                **raw[name],
+                "value": float(raw[name]["value"]) * factor,
+                "source": f"{source}: scaled by {factor:.6g} with its gains (same control law)",
+            }
+    return with_gains(_parse(dumps(raw), "scaled norms"), gains, source)
 
 
 def save_settings(settings: ControllerSettings, path: str | Path, header: str = "") -> None:
