@@ -11,7 +11,19 @@ HELP = "design the skyhook gains K_fb (LQR or ISO 2631 optimisation); Fig. 12"
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add ``--params``, ``--load``, ``--method``, ``--solver``, ``--road``, ``--speed``,
     ``--margin``, ``--plot`` and ``--output``."""
-    parser.add_argument("--params", metavar="FILE", default=None, help="loader parameter file")
+    parser.add_argument(
+        "--machine",
+        metavar="NAME|FILE",
+        default="skid_steer",
+        help="a generated machine (skid_steer, compact_wheel_loader, ...) or its description "
+        "file; default: skid_steer (lqr and optimise for every machine, refine for the skid-steer)",
+    )
+    parser.add_argument(
+        "--params",
+        metavar="FILE",
+        default=None,
+        help="parameter file (for another machine than the skid-steer its flat file)",
+    )
     parser.add_argument(
         "--load",
         choices=("empty", "full", "both"),
@@ -129,6 +141,14 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
         raise ValueError(f"--speed {args.speed:g} with --method refine: allowed: 9 or 18 km/h")
     if args.evaluations < 1:
         raise ValueError(f"--evaluations {args.evaluations}: allowed: an integer >= 1")
+    from loader_model.machines import resolve_machine_name
+
+    machine = resolve_machine_name(getattr(args, "machine", "skid_steer"))
+    if machine != "skid_steer" and args.method == "refine":
+        raise ValueError(
+            f"--method refine with --machine {machine}: allowed: lqr or optimise (the course "
+            "refinement runs the skid-steer's Table 6 trials)"
+        )
     from loader_model.control.comfort_design import (
         TABLE3_GAIN,
         TABLE3_PRINTED_GAIN,
@@ -141,7 +161,13 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
     course_note = ""
     loads = ("empty", "full") if args.load == "both" else (args.load,)
     params = None
-    if args.params is not None:
+    if machine != "skid_steer":
+        from loader_model.plant.scenario import resolve_plant
+
+        params = {
+            load: resolve_plant(args.params, load, machine=machine) for load in ("empty", "full")
+        }
+    elif args.params is not None:
         from loader_model.plant.plant_parameters import plant_parameter_vector
 
         params = {load: plant_parameter_vector(args.params, load) for load in ("empty", "full")}
@@ -154,6 +180,8 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
     else:
         designed = lqr[loads[0]] if len(loads) == 1 else None
         label, note = "output-feedback LQR", "Q = C_zᵀC_z, R = 1e-2, X0 = B_w B_wᵀ"
+    if machine != "skid_steer":
+        print(f"machine {machine} (φ: the boom's angle to the chassis; the bucket is not fed back)")
     print(
         f"Skyhook gains K_fb on (ẋ_H, ẏ_H, θ̇1, φ), road ISO 8608 class {args.road.upper()} at "
         f"{args.speed:g} km/h, designed for: {', '.join(loads)}; margin σ = {args.margin:g} rad/s"
@@ -193,18 +221,25 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
     if args.output is not None:
         import datetime
 
-        from loader_model.control.settings import default_settings, save_settings, with_gains
+        from loader_model.control.settings import (
+            default_settings,
+            save_settings,
+            with_gains,
+            with_scaled_gains,
+        )
 
         source = (
             f"loader-model design --method {args.method}"
             f"{'' if args.method == 'lqr' else f' --solver {args.solver}'} --load {args.load} --road "
             f"{args.road.upper()} --speed {args.speed:g} --margin {args.margin:g}"
+            f"{'' if machine == 'skid_steer' else f' --machine {machine}'}"
             f"{'' if args.params is None else f' --params {args.params}'}"
             f"{f' --evaluations {args.evaluations}' if args.method == 'refine' else ''} "
             f"on {datetime.date.today().isoformat()}{course_note}"
         )
+        scaled = with_scaled_gains if machine != "skid_steer" else with_gains
         save_settings(
-            with_gains(default_settings(), final, source),
+            scaled(default_settings(), final, source),
             args.output,
             header="Controller settings with designed skyhook gains (loader-model design).",
         )

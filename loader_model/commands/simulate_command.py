@@ -23,7 +23,7 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from loader_model.commands.common import add_model_arguments
+from loader_model.commands.common import add_model_arguments, machine_from_arguments
 
 if TYPE_CHECKING:
     from loader_model.simulation.result import Event
@@ -41,7 +41,7 @@ CONTROLLERS = ("baseline", "passive", "virtual-accumulator", "skyhook")
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Register the arguments of ``loader-model simulate``."""
-    add_model_arguments(parser)
+    add_model_arguments(parser, machine=True)
     parser.add_argument(
         "--controller",
         default="baseline",
@@ -80,6 +80,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument(
         "--output", metavar="FILE", default=None, help="time series: FILE.csv or FILE.npz"
+    )
+    parser.add_argument(
+        "--compare",
+        action="store_true",
+        help="run the four controllers (the skyhook with --controller FILE.toml's settings when "
+        "given) and print a_total of each and its change against the baseline",
     )
     parser.add_argument(
         "--plot",
@@ -142,11 +148,21 @@ def run(args: argparse.Namespace) -> int:
 
         settings_file = load_settings(args.controller)
     law = "skyhook" if settings_file is not None else args.controller
-    scenario = resolve_scenario(
-        args.params, args.load, controller=law, settings=settings_file, envelope=args.envelope
-    )
+    machine = machine_from_arguments(args).name
     course = _course(args.course, args.speed, args.duration, args.seed)
+    if args.compare:
+        return _compare(args, machine, course, settings_file)
+    scenario = resolve_scenario(
+        args.params,
+        args.load,
+        controller=law,
+        settings=settings_file,
+        envelope=args.envelope,
+        machine=machine,
+    )
     title = f"{course.name}; {args.controller} controller, load {args.load}, {args.envelope} tyres"
+    if machine != "skid_steer":
+        title = f"{machine}: {title}"
     try:
         steps = {} if args.substeps is None else {"substeps": args.substeps}
         result = simulate(
@@ -165,6 +181,23 @@ def run(args: argparse.Namespace) -> int:
         print(f"wrote {result.write(args.output)}")
     if plot is not None:
         print(f"wrote {plot_seat(result, plot, title)}")
+    return 0
+
+
+def _compare(args: argparse.Namespace, machine: str, course: object, settings: object) -> int:
+    """Print the four controllers' a_total over the course (``--compare``). Returns 0."""
+    from loader_model.simulation.machine_comparison import compare_controllers, format_comparison
+
+    rows = compare_controllers(
+        machine,
+        args.params,
+        args.load,
+        course=course,
+        settings=settings,
+        substeps=args.substeps,
+    )
+    title = f"{machine}: {getattr(course, 'name', '')}; load {args.load}"
+    print(format_comparison(rows, title))
     return 0
 
 

@@ -97,15 +97,15 @@ def comfort_plants(
     """Balanced :class:`DesignPlant` per load with the V_p and p_A r.m.s. limits (3 σ rule);
     ``params``: plant parameter vector or resolved plant per load
     (:func:`~loader_model.control.comfort_plant.comfort_case`), default the shipped loader's."""
-    from loader_model.parameters.sets import bucket_load
-    from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
+    from loader_model.plant.layout import plant_layout
 
     plants = []
     for load in loads:
         case = comfort_case(load, None if params is None else params.get(load))
         system = comfort_system(case, road_class, speed_kmh / 3.6)
-        v_max = float(case.params[PLANT_PARAMETER_NAMES.index("V_p_max")])
-        p_norm = bucket_load(load).pressure_normalisation
+        names = plant_layout(case.machine).parameter_names
+        v_max = float(case.params[names.index("V_p_max")])
+        p_norm = case.pressure_norm
         plant = DesignPlant.from_statespace(
             system,
             control=["p_ref_n"],

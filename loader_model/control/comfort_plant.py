@@ -78,37 +78,53 @@ class ComfortCase:
     plant: Any
     settings: np.ndarray
     sensors: np.ndarray
+    machine: str = "skid_steer"
+    pressure_norm: float = 0.0
+    """‖p_A‖∞ of the controller's normalisation, Pa (the paper's norm of the bucket load for the
+    skid-steer; :func:`~loader_model.plant.machine_parameters.pressure_norm` otherwise)."""
 
 
-_CASES: dict[tuple[str, tuple[float, ...] | None], ComfortCase] = {}
+_CASES: dict[tuple[str, tuple[float, ...] | None, str], ComfortCase] = {}
+
+
+def _pressure_norm(load: str, plant: PlantScenario) -> float:
+    if plant.is_default_machine:
+        from loader_model.parameters.sets import bucket_load
+
+        return bucket_load(load).pressure_normalisation
+    from loader_model.plant.machine_parameters import pressure_norm
+
+    return pressure_norm(plant.output("p_A"))
 
 
 def _case(load: str, plant: PlantScenario) -> ComfortCase:
     """The case of ``plant``: its equilibrium, static readings and linearisation, computed once."""
     from loader_model.control.sensors import sensor_signals
-    from loader_model.parameters.sets import bucket_load
     from loader_model.plant.linear import linearise_plant
 
     params = np.array(plant.params)
+    norm = _pressure_norm(load, plant)
     settings = settings_vector_for_plant(
-        default_settings(), params, bucket_load(load).pressure_normalisation, hold_command=plant.u0
+        default_settings(), params, norm, hold_command=plant.u0, machine=plant.machine
     )
-    linear = linearise_plant(params, np.array(plant.x0), plant.u0)
+    linear = linearise_plant(params, np.array(plant.x0), plant.u0, machine=plant.machine)
     system = linear.state_space(name=f"plant_{load}")
-    return ComfortCase(load, params, system, settings, sensor_signals(np.array(plant.y0)))
+    sensors = sensor_signals(np.array(plant.y0), plant.machine)
+    return ComfortCase(load, params, system, settings, sensors, plant.machine, norm)
 
 
 def comfort_case(load: str, params: np.ndarray | PlantScenario | None = None) -> ComfortCase:
     """:class:`ComfortCase` of ``load`` (``"empty"`` or ``"full"``): default parameters,
-    ``params`` (a vector) or a resolved plant (its equilibrium is not computed again); cached per
-    load and parameter vector."""
+    ``params`` (a vector) or a resolved plant (its equilibrium is not computed again; of any
+    machine); cached per load, parameter vector and machine."""
     from loader_model.plant.scenario import PlantScenario, resolve_plant
 
     if load not in ("empty", "full"):
         raise ValueError(f"load must be 'empty' or 'full'; got {load!r}")
     plant = params if isinstance(params, PlantScenario) else None
     vector = None if params is None else np.asarray(params if plant is None else plant.params)
-    key = (load, None if vector is None else tuple(float(v) for v in vector.ravel()))
+    machine = "skid_steer" if plant is None else plant.machine
+    key = (load, None if vector is None else tuple(float(v) for v in vector.ravel()), machine)
     if key not in _CASES:
         if plant is None:
             plant = (
@@ -196,10 +212,12 @@ def comfort_system(
     """
     import control
 
-    from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
+    from loader_model.plant.layout import plant_layout
 
-    named = dict(zip(PLANT_PARAMETER_NAMES, case.params, strict=True))
-    wheelbase = float(named["A_x"] - named["B_x"])
+    layout = plant_layout(case.machine)
+    named = dict(zip(layout.parameter_names, case.params, strict=True))
+    first, last = layout.machine.axles[0], layout.machine.axles[-1]
+    wheelbase = float(named[f"{first}_x"] - named[f"{last}_x"])
     road = road_shaping_filter(road_class, speed_m_s, wheelbase, rear, pade_order)
     weights = seat_weightings()
     plant = case.plant.name

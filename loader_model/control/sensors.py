@@ -51,19 +51,20 @@ def quantise(value: Any, step: Any) -> Any:
     return np.where(step > 0, safe * np.floor(np.asarray(value) / safe + 0.5), value)
 
 
-def sensor_signals(y: np.ndarray) -> np.ndarray:
+def sensor_signals(y: np.ndarray, machine: str | None = None) -> np.ndarray:
     """The ideal sensor readings (order :data:`SENSOR_NAMES`) from plant outputs ``y``.
 
-    ``y`` has the plant outputs along its last axis (one sample or a time series).
+    ``y`` has the plant outputs along its last axis (one sample or a time series), those of
+    ``machine``'s plant (default the skid-steer's).
     """
-    from loader_model.plant.plant import OUTPUT_NAMES
+    from loader_model.machines import DEFAULT_MACHINE
+    from loader_model.plant.layout import plant_layout
 
+    names = plant_layout(machine or DEFAULT_MACHINE).output_names
     y = np.asarray(y, dtype=float)
-    if y.shape[-1] != len(OUTPUT_NAMES):
-        raise ValueError(
-            f"y has {y.shape[-1]} outputs on its last axis; expected {len(OUTPUT_NAMES)}"
-        )
-    return y[..., [OUTPUT_NAMES.index(name) for name in SENSOR_NAMES]]
+    if y.shape[-1] != len(names):
+        raise ValueError(f"y has {y.shape[-1]} outputs on its last axis; expected {len(names)}")
+    return y[..., [names.index(name) for name in SENSOR_NAMES]]
 
 
 @dataclass(frozen=True)

@@ -40,6 +40,7 @@ __all__ = [
     "settings_vector",
     "settings_vector_for_plant",
     "with_gains",
+    "with_scaled_gains",
 ]
 
 #: Order of the ``settings`` input of every controller Function.
@@ -162,6 +163,31 @@ def with_gains(settings: ControllerSettings, k_fb: object, source: str) -> Contr
     return _parse(dumps(raw), "designed gains")
 
 
+def with_scaled_gains(
+    settings: ControllerSettings, k_fb: object, source: str, limit: float = 50.0
+) -> ControllerSettings:
+    """:func:`with_gains`, with the feedback norms scaled so that every gain is at most
+    ``limit`` in magnitude: the same control law (a gain k on a signal normalised by n is the
+    gain k c on the signal normalised by n c). The linear-acceleration norm is shared by k_x and
+    k_y, the angular-acceleration norm belongs to k_θ, the angle norm to k_φ; a norm is only
+    made smaller (c ≤ 1). For machines whose designed gains exceed the file's range of ±100."""
+    gains = np.asarray(k_fb, dtype=float).ravel()
+    raw = to_raw(settings)
+    groups = (("linear_acceleration_norm", (0, 1)), ("angular_acceleration_norm", (2,)),
+              ("angle_norm", (3,)))  # fmt: skip
+    for name, members in groups:
+        largest = max(abs(gains[i]) for i in members)
+        if largest > limit:
+            factor = float(limit / largest)
+            gains[list(members)] *= factor
+            raw[name] = {
+                **raw[name],
+                "value": float(raw[name]["value"]) * factor,
+                "source": f"{source}: scaled by {factor:.6g} with its gains (same control law)",
+            }
+    return with_gains(_parse(dumps(raw), "scaled norms"), gains, source)
+
+
 def save_settings(settings: ControllerSettings, path: str | Path, header: str = "") -> None:
     """Write ``settings`` as a controller TOML file (atomically; :func:`load_settings` reads it
     back equal)."""
@@ -253,17 +279,22 @@ def settings_vector_for_plant(
     pressure_norm: float,
     *,
     hold_command: float | None = None,
+    machine: str | None = None,
 ) -> np.ndarray:
     """:func:`settings_vector` with V_p,max, g and N_x from the plant parameter vector ``params``
     and the holding command from its static equilibrium (boom angle φ0 = 0, the plant's origin).
 
     ``hold_command``: the equilibrium's u0 when the caller has it
-    (:class:`~loader_model.plant.scenario.PlantScenario`); default: computed from ``params``."""
+    (:class:`~loader_model.plant.scenario.PlantScenario`); default: computed from ``params``.
+    ``machine``: the plant's machine (default the skid-steer)."""
+    from loader_model.machines import DEFAULT_MACHINE
     from loader_model.plant.equilibrium import static_state
-    from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
+    from loader_model.plant.layout import plant_layout
 
-    named = dict(zip(PLANT_PARAMETER_NAMES, np.asarray(params, dtype=float), strict=True))
-    hold = static_state(params)[1] if hold_command is None else float(hold_command)
+    machine = machine or DEFAULT_MACHINE
+    names = plant_layout(machine).parameter_names
+    named = dict(zip(names, np.asarray(params, dtype=float), strict=True))
+    hold = static_state(params, machine)[1] if hold_command is None else float(hold_command)
     return settings_vector(
         settings,
         pressure_norm=pressure_norm,

@@ -45,17 +45,10 @@ from typing import Any
 
 import casadi as ca
 
-import loader_model_generated as generated
+from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
 from loader_model.plant import components as hyd
-from loader_model.plant.plant import (
-    EXOGENOUS_NAMES,
-    INPUT_NAMES,
-    STATE_NAMES,
-    hydraulic_drive,
-    named_parameters,
-    plant_function,
-)
-from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
+from loader_model.plant.layout import PlantLayout, plant_layout
+from loader_model.plant.plant import hydraulic_drive, named_parameters, plant_function
 
 __all__ = [
     "ENERGY_NAMES",
@@ -63,6 +56,7 @@ __all__ = [
     "LOSS_NAMES",
     "build_energy",
     "energy_function",
+    "energy_names",
     "energy_rate_function",
 ]
 
@@ -81,12 +75,28 @@ LOSS_NAMES = (
     "check_valve",
     "relief_valve",
 )
-_N_MECH = len(generated.PARAMETER_NAMES)
 
 
-def _hydraulics(x: Any, drive: dict[str, Any], theta: dict[str, Any]) -> tuple[list, list, list]:
-    """Stored energies, input powers (pump, charge line) and losses of the hydraulic drive."""
-    p_a, p_b, v_acc = x[10], x[11], x[14]
+def _has_internal(layout: PlantLayout) -> bool:
+    return bool(layout.machine.locked_cylinders)
+
+
+def energy_names(machine: str = DEFAULT_MACHINE) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """The stored-energy and loss names of ``machine``: :data:`ENERGY_NAMES`,
+    :data:`LOSS_NAMES`, each with ``"internal"`` appended for a machine with locked cylinders
+    (their springs' energy and their dampers' loss, the generated ``V_internal``,
+    ``D_internal``)."""
+    if _has_internal(plant_layout(resolve_machine_name(machine))):
+        return (*ENERGY_NAMES, "internal"), (*LOSS_NAMES, "internal")
+    return ENERGY_NAMES, LOSS_NAMES
+
+
+def _hydraulics(
+    x: Any, drive: dict[str, Any], theta: dict[str, Any], h: int = 10
+) -> tuple[list, list, list]:
+    """Stored energies, input powers (pump, charge line) and losses of the hydraulic drive
+    (``h``: the index of p_A in the state)."""
+    p_a, p_b, v_acc = x[h], x[h + 1], x[h + 4]
     k_oil, n = theta["K_oil"], theta["n_cyl"]
     pi_a, pi_b = hyd.flow_power_pressure(k_oil, p_a), hyd.flow_power_pressure(k_oil, p_b)
     pi_c = hyd.flow_power_pressure(k_oil, theta["p_charge"])
@@ -115,32 +125,38 @@ def _hydraulics(x: Any, drive: dict[str, Any], theta: dict[str, Any]) -> tuple[l
     return stored, inputs, losses
 
 
-def build_energy(symbol: type = ca.SX) -> ca.Function:
+def build_energy(symbol: type = ca.SX, machine: str = DEFAULT_MACHINE) -> ca.Function:
     """``plant_energy(x, u, w, road_velocity, params) -> (E, E_parts, P_in, P_loss, F_elastic)``.
 
     ``road_velocity`` is the time derivative of the road displacement w[0:4] (what the road
     really does); w[4:8] is the rate the tyre law's dampers see. ``F_elastic`` (4,): the tyres'
     elastic forces, whose product with ``road_velocity`` is the part of P_road that depends on it.
+    For another ``machine`` the sizes are its own, and its locked cylinders add an entry to
+    ``E_parts`` and ``P_loss`` (:func:`energy_names`).
     """
-    x = symbol.sym("x", len(STATE_NAMES))
-    u = symbol.sym("u", len(INPUT_NAMES))
-    w = symbol.sym("w", len(EXOGENOUS_NAMES))
-    road_velocity = symbol.sym("road_velocity", 4)
-    params = symbol.sym("params", len(PLANT_PARAMETER_NAMES))
-    theta = named_parameters(params)
-    completed, _ = generated.function("complete_parameters")(params[:_N_MECH])
-    drive = hydraulic_drive(x, u, theta, completed)
-    p, pd, anchor = x[0:4], x[4:8], x[8:10]
-    road, road_rate, disturbance = w[0:4], w[4:8], w[8:11]
-    kinetic, gravity, tyres, elastic, tyre_loss = generated.function("mechanical_energy")(
+    layout = plant_layout(machine)
+    info = layout.machine
+    n_p, n_a, n_w = layout.n_coordinates, layout.n_anchors, len(info.road_names)
+    x = symbol.sym("x", len(layout.state_names))
+    u = symbol.sym("u", len(layout.input_names))
+    w = symbol.sym("w", len(layout.exogenous_names))
+    road_velocity = symbol.sym("road_velocity", n_w)
+    params = symbol.sym("params", len(layout.parameter_names))
+    theta = named_parameters(params, layout)
+    completed, _ = info.function("complete_parameters")(params[: layout.n_mechanical])
+    drive = hydraulic_drive(x, u, theta, completed, layout)
+    p, pd, anchor = x[0:n_p], x[n_p : 2 * n_p], x[2 * n_p : 2 * n_p + n_a]
+    road, road_rate, disturbance = w[0:n_w], w[n_w : 2 * n_w], w[2 * n_w : 2 * n_w + 3]
+    kinetic, gravity, tyres, elastic, tyre_loss, *internal = info.function("mechanical_energy")(
         p, pd, anchor, road, road_rate, completed
     )
-    forces = generated.function("tyre_contact")(p, pd, anchor, road, road_rate, completed)[0]
+    forces = info.function("tyre_contact")(p, pd, anchor, road, road_rate, completed)[0]
     road_power = ca.dot(forces, road_rate) + ca.dot(elastic, road_velocity - road_rate)
-    stored, hydraulic_in, hydraulic_loss = _hydraulics(x, drive, theta)
-    parts = ca.vertcat(kinetic, gravity, tyres, *stored)
+    stored, hydraulic_in, hydraulic_loss = _hydraulics(x, drive, theta, layout.index("p_A"))
+    internal_stored, internal_loss = internal[:1], internal[1:2]
+    parts = ca.vertcat(kinetic, gravity, tyres, *stored, *internal_stored)
     inputs = ca.vertcat(road_power, *hydraulic_in, ca.dot(disturbance, pd[0:3]))
-    losses = ca.vertcat(tyre_loss, *hydraulic_loss)
+    losses = ca.vertcat(tyre_loss, *hydraulic_loss, *internal_loss)
     return ca.Function(
         "plant_energy",
         [x, u, w, road_velocity, params],
@@ -150,28 +166,40 @@ def build_energy(symbol: type = ca.SX) -> ca.Function:
     )
 
 
-@cache
-def energy_function() -> ca.Function:
-    """The SX :func:`build_energy` Function, built once per process."""
-    return build_energy(ca.SX)
+def energy_function(machine: str = DEFAULT_MACHINE) -> ca.Function:
+    """The SX :func:`build_energy` Function of ``machine``, built once per process."""
+    return _energy_function(resolve_machine_name(machine))
 
 
 @cache
-def energy_rate_function() -> ca.Function:
+def _energy_function(machine: str) -> ca.Function:
+    return build_energy(ca.SX, machine)
+
+
+def energy_rate_function(machine: str = DEFAULT_MACHINE) -> ca.Function:
+    """``energy_rate(x, u, w, road_velocity, params) -> (dE_dt, P_net)`` of ``machine``
+    (:func:`_energy_rate_function`)."""
+    return _energy_rate_function(resolve_machine_name(machine))
+
+
+@cache
+def _energy_rate_function(machine: str) -> ca.Function:
     """``energy_rate(x, u, w, road_velocity, params) -> (dE_dt, P_net)``: both sides of the balance.
 
     dE/dt = ∂E/∂x · f(x, u, w) + ∂E/∂w_road · road_velocity by forward AD through the plant's
     ``xdot``; P_net = ΣP_in − ΣP_loss. Equal to round-off at any state (module docstring).
     """
-    x = ca.SX.sym("x", len(STATE_NAMES))
-    u = ca.SX.sym("u", len(INPUT_NAMES))
-    w = ca.SX.sym("w", len(EXOGENOUS_NAMES))
-    road_velocity = ca.SX.sym("road_velocity", 4)
-    params = ca.SX.sym("params", len(PLANT_PARAMETER_NAMES))
-    energy, _, inputs, losses, _ = energy_function()(x, u, w, road_velocity, params)
-    xdot = plant_function()(x, u, w, params)[0]
+    layout = plant_layout(machine)
+    n_w = len(layout.machine.road_names)
+    x = ca.SX.sym("x", len(layout.state_names))
+    u = ca.SX.sym("u", len(layout.input_names))
+    w = ca.SX.sym("w", len(layout.exogenous_names))
+    road_velocity = ca.SX.sym("road_velocity", n_w)
+    params = ca.SX.sym("params", len(layout.parameter_names))
+    energy, _, inputs, losses, _ = energy_function(machine)(x, u, w, road_velocity, params)
+    xdot = plant_function(machine)(x, u, w, params)[0]
     direction = ca.vertcat(xdot, road_velocity)
-    rate = ca.jtimes(energy, ca.vertcat(x, w[0:4]), direction)
+    rate = ca.jtimes(energy, ca.vertcat(x, w[0:n_w]), direction)
     return ca.Function(
         "energy_rate",
         [x, u, w, road_velocity, params],

@@ -28,22 +28,20 @@ from functools import cache
 import casadi as ca
 import numpy as np
 
-import loader_model_generated as generated
+from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
 from loader_model.plant.components import ATMOSPHERIC_PRESSURE_PA
+from loader_model.plant.layout import plant_layout
 from loader_model.plant.occupant import OCCUPANT_STATE_NAMES
-from loader_model.plant.plant import STATE_NAMES
-from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
 from loader_model.vehicle.cylinder import static_piston_pressure
 
 __all__ = ["equilibrium_function", "static_state"]
 
-_N_MECH = len(generated.PARAMETER_NAMES)
 
-
-def _build(symbol: type = ca.SX) -> ca.Function:
-    params = symbol.sym("params", len(PLANT_PARAMETER_NAMES))
-    theta = {name: params[i] for i, name in enumerate(PLANT_PARAMETER_NAMES)}
-    _, force = generated.function("complete_parameters")(params[:_N_MECH])
+def _build(symbol: type = ca.SX, machine: str = DEFAULT_MACHINE) -> ca.Function:
+    layout = plant_layout(machine)
+    params = symbol.sym("params", len(layout.parameter_names))
+    theta = {name: params[i] for i, name in enumerate(layout.parameter_names)}
+    _, force = layout.machine.function("complete_parameters")(params[: layout.n_mechanical])
     p_b = theta["p_charge"]
     p_a = static_piston_pressure(force, theta["n_cyl"], theta["d_piston"], theta["d_rod"], p_b)
     holding = theta["pump_on"] * theta["valves_on"] * theta["leakage_on"] * theta["holding_open"]
@@ -54,7 +52,7 @@ def _build(symbol: type = ca.SX) -> ca.Function:
     filled = gas * (1 - (absolute_0 / ca.fmax(absolute_a, absolute_0)) ** (1 / theta["n_poly"]))
     empty = (p_a - theta["p_0"]) / (theta["n_poly"] * absolute_0 / gas)
     v_acc = ca.if_else(p_a >= theta["p_0"], filled, empty)
-    zeros = symbol.zeros(10)
+    zeros = symbol.zeros(layout.index("p_A"))
     state = ca.vertcat(zeros, p_a, p_b, v_p, 0, v_acc, symbol.zeros(len(OCCUPANT_STATE_NAMES)))
     return ca.Function(
         "plant_equilibrium",
@@ -66,15 +64,20 @@ def _build(symbol: type = ca.SX) -> ca.Function:
 
 
 @cache
-def equilibrium_function() -> ca.Function:
+def _equilibrium_function(machine: str) -> ca.Function:
+    return _build(ca.SX, machine)
+
+
+def equilibrium_function(machine: str = DEFAULT_MACHINE) -> ca.Function:
     """``plant_equilibrium(params) -> (x0, u0, F_act0)``: static state, the pump command that
-    holds it, and the cylinder force (SX, built once)."""
-    return _build(ca.SX)
+    holds it, and the cylinder force (SX, built once per machine)."""
+    return _equilibrium_function(resolve_machine_name(machine))
 
 
-def static_state(params: np.ndarray) -> tuple[np.ndarray, float]:
-    """Numeric static state (order :data:`~loader_model.plant.plant.STATE_NAMES`) and command."""
-    x0, u0, _ = equilibrium_function()(np.asarray(params, dtype=float))
+def static_state(params: np.ndarray, machine: str = DEFAULT_MACHINE) -> tuple[np.ndarray, float]:
+    """Numeric static state (order of the machine's plant states, default the skid-steer's
+    :data:`~loader_model.plant.plant.STATE_NAMES`) and command."""
+    x0, u0, _ = equilibrium_function(machine)(np.asarray(params, dtype=float))
     state = np.asarray(x0, dtype=float).ravel()
-    assert state.shape == (len(STATE_NAMES),)
+    assert state.shape == (len(plant_layout(resolve_machine_name(machine)).state_names),)
     return state, float(u0)

@@ -31,24 +31,18 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
+from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
 from loader_model.plant.equilibrium import static_state
+from loader_model.plant.layout import plant_layout
 from loader_model.plant.occupant import OCCUPANT_STATE_NAMES
-from loader_model.plant.plant import (
-    EXOGENOUS_NAMES,
-    INPUT_NAMES,
-    OUTPUT_NAMES,
-    STATE_NAMES,
-    plant_function,
-)
+from loader_model.plant.plant import plant_function
 
 __all__ = ["PlantLinearisation", "linearise_plant", "undamped_matrices_from_plant"]
 
-_ANCHORS = ("xi_A", "xi_B")
-
 
 @cache
-def _jacobian_function() -> ca.Function:
-    plant = plant_function()
+def _jacobian_function(machine: str = DEFAULT_MACHINE) -> ca.Function:
+    plant = plant_function(machine)
     x = ca.SX.sym("x", plant.size1_in(0))
     u = ca.SX.sym("u", plant.size1_in(1))
     w = ca.SX.sym("w", plant.size1_in(2))
@@ -75,6 +69,7 @@ class PlantLinearisation:
     D_w: np.ndarray
     operating_state: np.ndarray
     operating_input: float
+    machine: str = DEFAULT_MACHINE
 
     def state_space(
         self, *, drop: tuple[str, ...] | None = None, exogenous: bool = True, name: str = "plant"
@@ -88,13 +83,15 @@ class PlantLinearisation:
         """
         import control
 
+        layout = plant_layout(self.machine)
+        states = layout.state_names
         if drop is None:
-            drop = _ANCHORS
-            index = STATE_NAMES.index("V_acc")
+            drop = layout.machine.anchor_names
+            index = states.index("V_acc")
             if not self.A[index].any() and not self.A[:, index].any():
                 drop = (*drop, "V_acc")
-            occupant = [STATE_NAMES.index(n) for n in OCCUPANT_STATE_NAMES]
-            rest = [i for i in range(len(STATE_NAMES)) if i not in occupant]
+            occupant = [states.index(n) for n in OCCUPANT_STATE_NAMES]
+            rest = [i for i in range(len(states)) if i not in occupant]
             inert = not (
                 self.A[np.ix_(occupant, rest)].any()
                 or self.B[occupant].any()
@@ -103,11 +100,11 @@ class PlantLinearisation:
             )
             if inert:
                 drop = (*drop, *OCCUPANT_STATE_NAMES)
-        unknown = sorted(set(drop) - set(STATE_NAMES))
+        unknown = sorted(set(drop) - set(states))
         if unknown:
-            raise ValueError(f"drop: unknown states {unknown}; allowed: {list(STATE_NAMES)}")
-        keep = [i for i, n in enumerate(STATE_NAMES) if n not in drop]
-        inputs = list(INPUT_NAMES) + (list(EXOGENOUS_NAMES) if exogenous else [])
+            raise ValueError(f"drop: unknown states {unknown}; allowed: {list(states)}")
+        keep = [i for i, n in enumerate(states) if n not in drop]
+        inputs = list(layout.input_names) + (list(layout.exogenous_names) if exogenous else [])
         b = np.hstack([self.B, self.E]) if exogenous else self.B
         d = np.hstack([self.D_u, self.D_w]) if exogenous else self.D_u
         return control.ss(
@@ -115,50 +112,61 @@ class PlantLinearisation:
             b[keep],
             self.C[:, keep],
             d,
-            states=[STATE_NAMES[i] for i in keep],
+            states=[states[i] for i in keep],
             inputs=inputs,
-            outputs=list(OUTPUT_NAMES),
+            outputs=list(layout.output_names),
             name=name,
         )
 
 
 def linearise_plant(
-    params: np.ndarray, x: np.ndarray | None = None, u: float | None = None, w: Any = None
+    params: np.ndarray,
+    x: np.ndarray | None = None,
+    u: float | None = None,
+    w: Any = None,
+    *,
+    machine: str = DEFAULT_MACHINE,
 ) -> PlantLinearisation:
-    """Linearise the plant at ``(x, u, w)``; default: its static equilibrium, no road input."""
+    """Linearise the plant of ``machine`` (default the skid-steer) at ``(x, u, w)``; default:
+    its static equilibrium, no road input."""
+    name = resolve_machine_name(machine)
     params = np.asarray(params, dtype=float)
     if x is None or u is None:
-        x0, u0 = static_state(params)
+        x0, u0 = static_state(params, name)
         x = x0 if x is None else x
         u = u0 if u is None else u
-    w = np.zeros(len(EXOGENOUS_NAMES)) if w is None else np.asarray(w, dtype=float)
-    matrices = [np.asarray(m) for m in _jacobian_function()(x, u, w, params)]
-    return PlantLinearisation(*matrices, operating_state=np.asarray(x, float), operating_input=u)
+    size = len(plant_layout(name).exogenous_names)
+    w = np.zeros(size) if w is None else np.asarray(w, dtype=float)
+    matrices = [np.asarray(m) for m in _jacobian_function(name)(x, u, w, params)]
+    return PlantLinearisation(
+        *matrices, operating_state=np.asarray(x, float), operating_input=u, machine=name
+    )
 
 
-def undamped_matrices_from_plant(params: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+def undamped_matrices_from_plant(
+    params: np.ndarray, *, machine: str = DEFAULT_MACHINE
+) -> tuple[np.ndarray, np.ndarray, float]:
     """M, K of Eq. 27 with the chambers closed (Eq. 28), and k_eq of the cylinders [N/m].
 
     ``params`` should have the pump, valves, leakage and friction switched off
     (:meth:`~loader_model.plant.plant_parameters.PlantOptions.closed`). k_eq is the stiffness
     of the closed oil columns along the cylinder axis: −∂F_act/∂x_cyl through the pressures.
     """
-    import loader_model_generated as generated
-
-    linear = linearise_plant(params)
-    position = [STATE_NAMES.index(n) for n in generated.COORDINATE_NAMES]
-    rate = [STATE_NAMES.index(n) for n in generated.RATE_NAMES]
-    pressure = [STATE_NAMES.index("p_A"), STATE_NAMES.index("p_B")]
+    layout = plant_layout(resolve_machine_name(machine))
+    info, index = layout.machine, layout.index
+    linear = linearise_plant(params, machine=info.name)
+    position = [index(n) for n in info.coordinate_names]
+    rate = [index(n) for n in info.rate_names]
+    pressure = [index("p_A"), index("p_B")]
     sensitivity = linear.A[np.ix_(pressure, rate)]
     stiffness_over_mass = (
         linear.A[np.ix_(rate, position)] + linear.A[np.ix_(rate, pressure)] @ sensitivity
     )
-    completed, _ = generated.function("complete_parameters")(
-        params[: len(generated.PARAMETER_NAMES)]
-    )
-    mass = np.asarray(generated.function("mass_matrix")(np.zeros(4), completed))
+    completed, _ = info.function("complete_parameters")(params[: layout.n_mechanical])
+    zeros = np.zeros(layout.n_coordinates)
+    mass = np.asarray(info.function("mass_matrix")(zeros, completed))
     stiffness = -mass @ stiffness_over_mass
-    force_row = linear.C[OUTPUT_NAMES.index("F_act"), pressure]
-    lever = float(generated.function("cylinder_kinematics")(np.zeros(4), np.zeros(4), completed)[2])
+    force_row = linear.C[layout.output_names.index("F_act"), pressure]
+    lever = float(info.function("cylinder_kinematics")(zeros, zeros, completed)[2])
     k_eq = -float(force_row @ sensitivity[:, 3]) / lever
     return mass, 0.5 * (stiffness + stiffness.T), k_eq

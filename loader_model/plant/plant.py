@@ -45,11 +45,11 @@ from typing import Any
 
 import casadi as ca
 
-import loader_model_generated as generated
+from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
 from loader_model.plant import components as hyd
 from loader_model.plant.circuit import circuit_flows
-from loader_model.plant.occupant import OCCUPANT_STATE_NAMES, occupant_dynamics
-from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
+from loader_model.plant.layout import PlantLayout, plant_layout
+from loader_model.plant.occupant import occupant_dynamics
 
 __all__ = [
     "EXOGENOUS_NAMES",
@@ -60,56 +60,29 @@ __all__ = [
     "hydraulic_drive",
     "named_parameters",
     "plant_function",
+    "plant_layout",
 ]
 
-STATE_NAMES: tuple[str, ...] = (
-    *generated.COORDINATE_NAMES,
-    *generated.RATE_NAMES,
-    *generated.ANCHOR_NAMES,
-    "p_A",
-    "p_B",
-    "V_p",
-    "Vd_p",
-    "V_acc",
-    *OCCUPANT_STATE_NAMES,
-)
-INPUT_NAMES: tuple[str, ...] = ("V_p_ref",)
-EXOGENOUS_NAMES: tuple[str, ...] = generated.EXOGENOUS_NAMES
-OUTPUT_NAMES: tuple[str, ...] = (
-    "xd_H",
-    "yd_H",
-    "thetad_1",
-    "phi",
-    "f_Hx",
-    "f_Hy",
-    "f_Ny",
-    "f_Sx",
-    "f_Sy",
-    "thetadd_1",
-    "p_A",
-    "p_B",
-    "F_act",
-    "x_piston",
-    "V_p",
-    "Q_pump",
-    "F_Ay",
-    "F_By",
-    "p_acc",
-    "f_Px",
-    "f_Py",
-)
+_SKID_STEER = plant_layout(DEFAULT_MACHINE)
+#: The skid-steer's plant (any machine: :func:`plant_layout`).
+STATE_NAMES: tuple[str, ...] = _SKID_STEER.state_names
+INPUT_NAMES: tuple[str, ...] = _SKID_STEER.input_names
+EXOGENOUS_NAMES: tuple[str, ...] = _SKID_STEER.exogenous_names
+OUTPUT_NAMES: tuple[str, ...] = _SKID_STEER.output_names
 
-_N_MECH = len(generated.PARAMETER_NAMES)
-_N_HYD = STATE_NAMES.index(OCCUPANT_STATE_NAMES[0])  # the states before the occupant's
 _SATURATION_BAND = 0.01  # C¹ saturations are exact below 99 % of their limit
 
 
-def named_parameters(params: Any) -> dict[str, Any]:
-    """The entries of a plant parameter vector by name (:data:`PLANT_PARAMETER_NAMES`)."""
-    return {name: params[i] for i, name in enumerate(PLANT_PARAMETER_NAMES)}
+def named_parameters(params: Any, layout: PlantLayout | None = None) -> dict[str, Any]:
+    """The entries of a plant parameter vector by name (the layout's, default the skid-steer's
+    :data:`~loader_model.plant.plant_parameters.PLANT_PARAMETER_NAMES`)."""
+    names = (layout or _SKID_STEER).parameter_names
+    return {name: params[i] for i, name in enumerate(names)}
 
 
-def hydraulic_drive(x: Any, u: Any, theta: dict[str, Any], completed: Any) -> dict[str, Any]:
+def hydraulic_drive(
+    x: Any, u: Any, theta: dict[str, Any], completed: Any, layout: PlantLayout | None = None
+) -> dict[str, Any]:
     """Hydraulic quantities of the state, totals over the cylinders (module docstring).
 
     Returns the cylinder force and position, the pressure rates and every flow and force they
@@ -117,10 +90,13 @@ def hydraulic_drive(x: Any, u: Any, theta: dict[str, Any], completed: Any) -> di
     ẋ_cyl, chamber volumes ``V_A``, ``V_B``, flows ``pump_flow``, ``charge``, ``check``,
     ``relief``, ``leakage``, ``q_acc`` (into the orifice, at chamber A's density),
     ``accumulator_rate`` (its oil volume rate), forces ``friction`` and ``end_stop``.
+    ``layout`` (default the skid-steer's) gives the machine and its state indices.
     """
-    p, pd = x[0:4], x[4:8]
-    p_a, p_b, v_p, vd_p, v_acc = x[10], x[11], x[12], x[13], x[14]
-    kinematics = generated.function("cylinder_kinematics")(p, pd, completed)
+    layout = layout or _SKID_STEER
+    n_p, h = layout.n_coordinates, layout.index("p_A")
+    p, pd = x[0:n_p], x[n_p : 2 * n_p]
+    p_a, p_b, v_p, vd_p, v_acc = x[h], x[h + 1], x[h + 2], x[h + 3], x[h + 4]
+    kinematics = layout.machine.function("cylinder_kinematics")(p, pd, completed)
     n = theta["n_cyl"]
     piston = ca.pi / 4 * theta["d_piston"] ** 2
     annulus = piston - ca.pi / 4 * theta["d_rod"] ** 2
@@ -190,49 +166,55 @@ def hydraulic_drive(x: Any, u: Any, theta: dict[str, Any], completed: Any) -> di
     }
 
 
-def build_plant(symbol: type = ca.SX) -> ca.Function:
+def build_plant(symbol: type = ca.SX, machine: str = DEFAULT_MACHINE) -> ca.Function:
     """Build the plant Function ``plant(x, u, w, params) -> (xdot, y)`` (module docstring).
 
     Parameters
     ----------
     symbol : casadi.SX or casadi.MX
         Symbol type of the graph (SX: fast to evaluate and to JIT-compile; MX: compact).
+    machine : str
+        A machine of :func:`loader_model.machines.list_machines` (default the skid-steer); its
+        names and sizes: :func:`plant_layout`.
     """
-    x = symbol.sym("x", len(STATE_NAMES))
-    u = symbol.sym("u", len(INPUT_NAMES))
-    w = symbol.sym("w", len(EXOGENOUS_NAMES))
-    params = symbol.sym("params", len(PLANT_PARAMETER_NAMES))
-    theta = named_parameters(params)
-    completed, _ = generated.function("complete_parameters")(params[:_N_MECH])
-    drive = hydraulic_drive(x, u, theta, completed)
-    p, pd, anchor = x[0:4], x[4:8], x[8:10]
-    road, road_rate, disturbance = w[0:4], w[4:8], w[8:11]
-    pdd, anchor_rate = generated.function("forward_dynamics")(
+    layout = plant_layout(machine)
+    info = layout.machine
+    n_p, n_a, n_w = layout.n_coordinates, layout.n_anchors, len(info.road_names)
+    x = symbol.sym("x", len(layout.state_names))
+    u = symbol.sym("u", len(layout.input_names))
+    w = symbol.sym("w", len(layout.exogenous_names))
+    params = symbol.sym("params", len(layout.parameter_names))
+    theta = named_parameters(params, layout)
+    completed, _ = info.function("complete_parameters")(params[: layout.n_mechanical])
+    drive = hydraulic_drive(x, u, theta, completed, layout)
+    p, pd, anchor = x[0:n_p], x[n_p : 2 * n_p], x[2 * n_p : 2 * n_p + n_a]
+    road, road_rate = w[0:n_w], w[n_w : 2 * n_w]
+    disturbance = w[2 * n_w : 2 * n_w + len(info.disturbance_names)]
+    pdd, anchor_rate = info.function("forward_dynamics")(
         p, pd, anchor, drive["force"], road, road_rate, disturbance, completed
     )
-    f_h, f_n, f_s = generated.function("specific_forces")(p, pd, pdd, completed)
-    occupant_rate, pad = occupant_dynamics(x[_N_HYD:], f_s, theta)
+    forces = info.function("specific_forces")(p, pd, pdd, completed)
+    occupant_rate, pad = occupant_dynamics(
+        x[layout.n_hydraulic_end :], forces[layout.seat_sensor], theta
+    )
     xdot = ca.vertcat(pd, pdd, anchor_rate, drive["rates"], occupant_rate)
-    tyres = generated.function("tyre_contact")(p, pd, anchor, road, road_rate, completed)[0]
+    tyres = info.function("tyre_contact")(p, pd, anchor, road, road_rate, completed)[0]
+    h = layout.index("p_A")
+    joints = [p[3 + k] - p[2 + k] for k in range(n_p - 3)]
     y = ca.vertcat(
         pd[0],
         pd[1],
         pd[2],
-        p[3] - p[2],
-        f_h[0],
-        f_h[1],
-        f_n[1],
-        f_s[0],
-        f_s[1],
+        *joints,
+        *(forces[k][axis] for _, k, axis in layout.sensor_outputs),
         pdd[2],
-        x[10],
-        x[11],
+        x[h],
+        x[h + 1],
         drive["force"],
         drive["position"],
-        x[12],
+        x[h + 2],
         drive["pump_flow"],
-        tyres[1],
-        tyres[3],
+        *(tyres[2 * k + 1] for k in range(len(info.axles))),
         drive["p_acc"],
         pad,
     )
@@ -242,6 +224,10 @@ def build_plant(symbol: type = ca.SX) -> ca.Function:
 
 
 @cache
-def plant_function() -> ca.Function:
-    """The SX plant Function, built once per process."""
-    return build_plant(ca.SX)
+def _plant_function(machine: str) -> ca.Function:
+    return build_plant(ca.SX, machine)
+
+
+def plant_function(machine: str = DEFAULT_MACHINE) -> ca.Function:
+    """The SX plant Function of ``machine`` (name or description file), built once per process."""
+    return _plant_function(resolve_machine_name(machine))

@@ -21,16 +21,15 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
 from loader_model.plant.equilibrium import static_state
-from loader_model.plant.plant import EXOGENOUS_NAMES, OUTPUT_NAMES, STATE_NAMES, plant_function
-from loader_model.plant.plant_parameters import (
-    PLANT_PARAMETER_NAMES,
-    PlantOptions,
-    plant_parameter_vector,
-)
+from loader_model.plant.layout import PlantLayout, plant_layout
+from loader_model.plant.plant import plant_function
+from loader_model.plant.plant_parameters import PlantOptions, plant_parameter_vector
 from loader_model.vehicle.statics import resolve_machine
 
 if TYPE_CHECKING:
+    from loader_model.parameters.machine_files import MachineParameters
     from loader_model.parameters.schema import BucketLoad, LoaderParameters
 
 __all__ = ["PlantScenario", "resolve_plant"]
@@ -71,6 +70,11 @@ class PlantScenario:
         The validated bucket load (None when built from a bare vector).
     options : PlantOptions or None
         The circuit switches (None when built from a bare vector: the vector's switch entries).
+    machine : str
+        The machine (:func:`loader_model.machines.list_machines`; default the skid-steer); its
+        names and sizes: :attr:`layout`. For another machine ``loader`` is its
+        :class:`~loader_model.parameters.machine_files.MachineParameters` and ``load`` the
+        name of its load case (None: the file's [model] values).
     """
 
     params: np.ndarray
@@ -80,54 +84,74 @@ class PlantScenario:
     loader: LoaderParameters | None = None
     load: BucketLoad | None = None
     options: PlantOptions | None = None
+    machine: str = DEFAULT_MACHINE
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "machine", resolve_machine_name(self.machine))
+        layout = self.layout
         object.__setattr__(
-            self, "params", _frozen(self.params, "params", len(PLANT_PARAMETER_NAMES))
+            self, "params", _frozen(self.params, "params", len(layout.parameter_names))
         )
-        object.__setattr__(self, "x0", _frozen(self.x0, "x0", len(STATE_NAMES)))
-        object.__setattr__(self, "y0", _frozen(self.y0, "y0", len(OUTPUT_NAMES)))
+        object.__setattr__(self, "x0", _frozen(self.x0, "x0", len(layout.state_names)))
+        object.__setattr__(self, "y0", _frozen(self.y0, "y0", len(layout.output_names)))
         object.__setattr__(self, "u0", float(self.u0))
         if self.options is not None and not isinstance(self.options, PlantOptions):
             raise TypeError(
                 f"options must be a PlantOptions or None; got {type(self.options).__name__}"
             )
 
+    @property
+    def layout(self) -> PlantLayout:
+        """Names and sizes of this machine's plant (:func:`~loader_model.plant.layout.
+        plant_layout`)."""
+        return plant_layout(self.machine)
+
+    @property
+    def is_default_machine(self) -> bool:
+        """True for the paper's skid-steer."""
+        return self.machine == DEFAULT_MACHINE
+
     @classmethod
     def from_vector(
         cls,
         params: np.ndarray,
-        loader: LoaderParameters | None = None,
-        load: BucketLoad | None = None,
+        loader: LoaderParameters | MachineParameters | None = None,
+        load: BucketLoad | str | None = None,
         options: PlantOptions | None = None,
+        machine: str = DEFAULT_MACHINE,
     ) -> PlantScenario:
         """The scenario of a parameter vector: its static equilibrium and outputs, computed once.
 
         ``loader``, ``load`` and ``options`` are recorded as given (the vector's sources, when
         known); they are not checked against the vector.
         """
+        layout = plant_layout(resolve_machine_name(machine))
         vector = np.asarray(params, dtype=float).ravel()
-        if vector.size != len(PLANT_PARAMETER_NAMES):
+        if vector.size != len(layout.parameter_names):
             raise ValueError(
-                f"params must have {len(PLANT_PARAMETER_NAMES)} values; got {vector.size}"
+                f"params must have {len(layout.parameter_names)} values; got {vector.size}"
             )
-        x0, u0 = static_state(vector)
-        _, y = plant_function()(x0, u0, np.zeros(len(EXOGENOUS_NAMES)), vector)
-        return cls(vector, x0, u0, np.asarray(y, dtype=float).ravel(), loader, load, options)
+        x0, u0 = static_state(vector, layout.machine.name)
+        w = np.zeros(len(layout.exogenous_names))
+        _, y = plant_function(layout.machine.name)(x0, u0, w, vector)
+        y0 = np.asarray(y, dtype=float).ravel()
+        return cls(vector, x0, u0, y0, loader, load, options, layout.machine.name)
 
     def parameter(self, name: str) -> float:
         """The value of plant parameter ``name`` (one of ``PLANT_PARAMETER_NAMES``)."""
-        if name not in PLANT_PARAMETER_NAMES:
+        names = self.layout.parameter_names
+        if name not in names:
             raise ValueError(
                 f"plant parameter {name!r} is unknown; allowed: one of PLANT_PARAMETER_NAMES"
             )
-        return float(self.params[PLANT_PARAMETER_NAMES.index(name)])
+        return float(self.params[names.index(name)])
 
     def output(self, name: str) -> float:
         """The static value of plant output ``name`` (one of ``OUTPUT_NAMES``)."""
-        if name not in OUTPUT_NAMES:
-            raise ValueError(f"plant output {name!r} is unknown; allowed: {list(OUTPUT_NAMES)}")
-        return float(self.y0[OUTPUT_NAMES.index(name)])
+        names = self.layout.output_names
+        if name not in names:
+            raise ValueError(f"plant output {name!r} is unknown; allowed: {list(names)}")
+        return float(self.y0[names.index(name)])
 
     def with_options(self, options: PlantOptions) -> PlantScenario:
         """The same loader and load with the circuit switches ``options``: the vector's switch
@@ -139,14 +163,16 @@ class PlantScenario:
             return self
         vector = self.params.copy()
         for name, value in options.switches().items():
-            vector[PLANT_PARAMETER_NAMES.index(name)] = value
-        return PlantScenario.from_vector(vector, self.loader, self.load, options)
+            vector[self.layout.parameter_names.index(name)] = value
+        return PlantScenario.from_vector(vector, self.loader, self.load, options, self.machine)
 
 
 def resolve_plant(
     loader: LoaderParameters | str | Path | None = None,
     load: BucketLoad | str | Path = "empty",
     options: PlantOptions | None = None,
+    *,
+    machine: str = DEFAULT_MACHINE,
 ) -> PlantScenario:
     """The plant of a loader, a bucket load and circuit switches, resolved once (module notes).
 
@@ -160,6 +186,12 @@ def resolve_plant(
         Circuit switches; default: pump, valves, leakage and friction on, load-holding valves
         open, accumulator shut, occupant on (``PlantOptions.for_controller`` gives a
         controller's circuit).
+    machine : str
+        A machine name or description file (default the skid-steer). For another machine,
+        ``loader`` is its parameter file (a ``MachineParameters``, a path, or None for the
+        shipped one) and ``load`` a load case of it (None or ``"full"``/``"empty"``, ...; the
+        skid-steer's default ``"empty"`` is taken as given); the plant's pump, valves, friction,
+        accumulator and occupant are estimates (:mod:`loader_model.plant.machine_parameters`).
 
     Returns
     -------
@@ -176,6 +208,15 @@ def resolve_plant(
         options = PlantOptions()
     elif not isinstance(options, PlantOptions):
         raise TypeError(f"options must be a PlantOptions or None; got {type(options).__name__}")
+    name = resolve_machine_name(machine)
+    if name != DEFAULT_MACHINE:
+        from loader_model.parameters.machine_files import resolve_machine_parameters
+        from loader_model.plant.machine_parameters import machine_plant_parameter_vector
+
+        values = resolve_machine_parameters(name, loader)  # type: ignore[arg-type]
+        case = None if load is None else str(load)
+        params = machine_plant_parameter_vector(name, values, case, options)
+        return PlantScenario.from_vector(params, values, case, options, name)
     loader, load = resolve_machine(loader, load)
     params = plant_parameter_vector(loader, load, options, check=False)
     return PlantScenario.from_vector(params, loader, load, options)

@@ -31,18 +31,21 @@ RIDE_CONTROLLERS = {
 }
 
 
-def plant_controller(name: str) -> ca.Function:
+def plant_controller(name: str, machine: str | None = None) -> ca.Function:
     """``controller(z, y, settings) -> (z_next, u)`` of ride controller ``name`` on the plant's
-    output vector ``y`` (order :data:`~loader_model.plant.plant.OUTPUT_NAMES`)."""
+    output vector ``y`` (order :data:`~loader_model.plant.plant.OUTPUT_NAMES`, or that of
+    ``machine``'s plant: the sensors by name)."""
     from loader_model.control.controllers import controller_function
     from loader_model.control.sensors import SENSOR_NAMES
+    from loader_model.plant.layout import plant_layout
 
     _check(name)
     inner = controller_function(RIDE_CONTROLLERS[name])
     z = ca.SX.sym("z", inner.size1_in(0))
-    y = ca.SX.sym("y", len(OUTPUT_NAMES))
+    names = OUTPUT_NAMES if machine is None else plant_layout(machine).output_names
+    y = ca.SX.sym("y", len(names))
     settings = ca.SX.sym("settings", inner.size1_in(2))
-    sensors = ca.vertcat(*(y[OUTPUT_NAMES.index(signal)] for signal in SENSOR_NAMES))
+    sensors = ca.vertcat(*(y[names.index(signal)] for signal in SENSOR_NAMES))
     z_next, u = inner(z, sensors, settings)
     return ca.Function(
         f"{inner.name()}_on_plant",
@@ -93,9 +96,14 @@ def plant_controller_setup(
 
     _check(name)
     vector = settings_vector_for_plant(
-        settings or default_settings(), plant.params, pressure_norm_pa, hold_command=plant.u0
+        settings or default_settings(),
+        plant.params,
+        pressure_norm_pa,
+        hold_command=plant.u0,
+        machine=plant.machine,
     )
-    fixed = operating_state(RIDE_CONTROLLERS[name], vector, sensor_signals(plant.y0))
+    readings = sensor_signals(plant.y0, plant.machine)
+    fixed = operating_state(RIDE_CONTROLLERS[name], vector, readings)
     return vector, np.asarray(fixed, dtype=float).ravel()
 
 

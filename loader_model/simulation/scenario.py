@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING, Any
 import casadi as ca
 import numpy as np
 
+from loader_model.machines import DEFAULT_MACHINE
 from loader_model.plant.plant_parameters import PlantOptions
 from loader_model.plant.scenario import PlantScenario, resolve_plant
 from loader_model.simulation.controllers import check_controller, hold_command_controller
@@ -56,9 +57,10 @@ HOLDING_CONTROLLERS: tuple[str, ...] = ("baseline", "passive")
 
 
 @functools.cache
-def _hold() -> ca.Function:
-    """The hold controller with u0 as its one setting (the same Function for every plant)."""
-    return hold_command_controller()
+def _hold(machine: str = DEFAULT_MACHINE) -> ca.Function:
+    """The hold controller with u0 as its one setting (the same Function for every plant of a
+    machine)."""
+    return hold_command_controller(machine)
 
 
 @dataclass(frozen=True, eq=False)
@@ -94,7 +96,7 @@ class Scenario:
         check_envelope(self.envelope)
         if not isinstance(self.plant, PlantScenario):
             raise TypeError(f"plant must be a PlantScenario; got {type(self.plant).__name__}")
-        controller = check_controller(self.controller)
+        controller = check_controller(self.controller, self.plant.machine)
         settings = np.array(self.settings, dtype=float).ravel()
         if settings.size != controller.size1_in(2):
             raise ValueError(
@@ -142,8 +144,8 @@ def closed_loop(
     if controller is None:
         if len(settings):
             raise ValueError("settings are for a controller; without one the pump holds u0")
-        controller, settings = _hold(), (plant.u0,)
-    controller = check_controller(controller)
+        controller, settings = _hold(plant.machine), (plant.u0,)
+    controller = check_controller(controller, plant.machine)
     if controller_state is None:
         controller_state = np.zeros(controller.size1_in(0))
     vector = np.asarray(settings, dtype=float)
@@ -221,6 +223,10 @@ def ride_scenario(
                 "PlantOptions.for_controller('passive'))"
             )
         return closed_loop(plant, name=controller, envelope=envelope)
+    if pressure_norm_pa is None and not plant.is_default_machine:
+        from loader_model.plant.machine_parameters import pressure_norm
+
+        pressure_norm_pa = pressure_norm(plant.output("p_A"))
     if pressure_norm_pa is None:
         if plant.load is None:
             raise ValueError(
@@ -231,7 +237,9 @@ def ride_scenario(
     vector, state = plant_controller_setup(
         controller, plant, float(pressure_norm_pa), _controller_settings(settings)
     )
-    return Scenario(plant, plant_controller(controller), vector, state, controller, envelope)
+    machine = None if plant.is_default_machine else plant.machine
+    function = plant_controller(controller, machine)
+    return Scenario(plant, function, vector, state, controller, envelope)
 
 
 def resolve_scenario(
@@ -241,6 +249,8 @@ def resolve_scenario(
     controller: str = "baseline",
     settings: ControllerSettings | str | Path | None = None,
     envelope: str = DEFAULT_ENVELOPE,
+    *,
+    machine: str = DEFAULT_MACHINE,
 ) -> Scenario:
     """A closed-loop scenario from files, names or objects, each resolved once (module notes).
 
@@ -259,6 +269,10 @@ def resolve_scenario(
         Its settings (:func:`ride_scenario`).
     envelope : str
         ``"tandem-cam"`` (default) or ``"rigid"``: how the tyres envelop the road.
+    machine : str
+        The machine (default the skid-steer; :func:`~loader_model.plant.scenario.resolve_plant`:
+        for another machine ``loader`` is its parameter file, ``load`` its load case; the
+        controllers' ‖p_A‖∞ is :func:`~loader_model.plant.machine_parameters.pressure_norm`).
 
     Returns
     -------
@@ -272,7 +286,7 @@ def resolve_scenario(
     _check_name(controller)
     if options is None:
         options = PlantOptions.for_controller(controller)
-    plant = resolve_plant(loader, load, options)
+    plant = resolve_plant(loader, load, options, machine=machine)
     return ride_scenario(plant, controller, settings, envelope=envelope)
 
 

@@ -26,7 +26,7 @@ import casadi as ca
 import numpy as np
 
 from loader_model.control.sensors import SENSOR_NAMES, SensorModel, quantise
-from loader_model.plant.plant import EXOGENOUS_NAMES, OUTPUT_NAMES, STATE_NAMES
+from loader_model.plant.plant import OUTPUT_NAMES, STATE_NAMES
 from loader_model.plant.scenario import PlantScenario
 from loader_model.simulation import validity_check
 from loader_model.simulation.controllers import CONTROLLER_PERIOD_S
@@ -90,12 +90,19 @@ def course_input(
         envelope = params.envelope if isinstance(params, Scenario) else DEFAULT_ENVELOPE
     check_envelope(envelope)
     plant = as_plant(params)
-    loads = (plant.output("F_Ay"), plant.output("F_By"))
-    gains = (loads[0] / plant.parameter("k_Ax"), loads[1] / plant.parameter("k_Bx"))
+    axles = plant.layout.machine.axles
+    if len(axles) != 2:
+        raise ValueError(
+            f"machine {plant.machine!r} has {len(axles)} axles ({', '.join(axles)}); the road "
+            "tables of loader_model.simulation.travel drive two axles, front and rear"
+        )
+    front, rear = axles
+    loads = (plant.output(f"F_{front}y"), plant.output(f"F_{rear}y"))
+    gains = (loads[0] / plant.parameter(f"k_{front}x"), loads[1] / plant.parameter(f"k_{rear}x"))
     cams = None
     if envelope == "tandem-cam":
-        cams = tuple(_axle_cam(plant, axle, load) for axle, load in zip("AB", loads, strict=True))
-    wheelbase = plant.parameter("A_x") - plant.parameter("B_x")
+        cams = tuple(_axle_cam(plant, a, load) for a, load in zip(axles, loads, strict=True))
+    wheelbase = plant.parameter(f"{front}_x") - plant.parameter(f"{rear}_x")
     return course.road_input(
         wheelbase, sample_rate_hz=sample_rate_hz, slope_to_x_m=gains, cams=cams
     )
@@ -216,25 +223,29 @@ def simulate(
     exogenous = exogenous_table(
         road, time_s, None if disturbance is None else _extend(disturbance, count)
     )
-    y_errors, y_steps = _sensor_errors(sensors, count)
-    monitor = validity_check.ValidityMonitor(resolve_bounds(validity, params), period_s)
-    period, backend = compile_period(controller, period_s, substeps, jit)
+    layout = scenario.plant.layout
+    state_names, output_names = layout.state_names, layout.output_names
+    n_w = len(layout.exogenous_names)
+    y_errors, y_steps = _sensor_errors(sensors, count, output_names)
+    bounds = resolve_bounds(validity, params, machine=scenario.plant.machine)
+    monitor = validity_check.ValidityMonitor(bounds, period_s, layout)
+    period, backend = compile_period(controller, period_s, substeps, jit, scenario.plant.machine)
     chunk = min(int(chunk_periods), count)
     roll = _rolled(period, chunk)
-    ncarry = len(STATE_NAMES) + nz + 1
+    ncarry = len(state_names) + nz + 1
     # Arrays in CasADi's column-major layout: a (chunk, n) C-order array is an (n, chunk) matrix.
     carry = np.concatenate([x0, z0, [u0]])
-    w0, w1 = np.empty((chunk, len(EXOGENOUS_NAMES))), np.empty((chunk, len(EXOGENOUS_NAMES)))
-    e_block = np.zeros((chunk, len(OUTPUT_NAMES)))
+    w0, w1 = np.empty((chunk, n_w)), np.empty((chunk, n_w))
+    e_block = np.zeros((chunk, len(output_names)))
     block = np.empty((chunk, ncarry))
-    y_block, u_block = np.empty((chunk, len(OUTPUT_NAMES))), np.empty(chunk)
+    y_block, u_block = np.empty((chunk, len(output_names))), np.empty(chunk)
     buffer, trigger = roll.buffer()
     for index, array in enumerate((carry, w0, w1, params, settings_vector, e_block, y_steps)):
         buffer.set_arg(index, memoryview(array))
     for index, array in enumerate((block, y_block, u_block)):
         buffer.set_res(index, memoryview(array))
     carries = np.empty((count, ncarry))
-    outputs = np.empty((count, len(OUTPUT_NAMES)))
+    outputs = np.empty((count, len(output_names)))
     commands = np.empty(count)
     start_wall = time.perf_counter()
     for start in range(0, count, chunk):
@@ -253,25 +264,27 @@ def simulate(
         if violation is not None:  # keep the rows up to it: the evidence
             count, carry = violation.index + 1, carries[violation.index].copy()
             break
-        validity_check.raise_if_not_finite(block[:size].T, y_block[:size].T, start, period_s)
+        validity_check.raise_if_not_finite(
+            block[:size].T, y_block[:size].T, start, period_s, state_names
+        )
         carry[:] = block[size - 1]
     wall_s = time.perf_counter() - start_wall
     states, y_all, u_all = carries[:count].T, outputs[:count].T, commands[:count]
     columns_out: dict[str, np.ndarray] = dict(
-        zip(STATE_NAMES, states[: len(STATE_NAMES)], strict=True)
+        zip(state_names, states[: len(state_names)], strict=True)
     )
-    for name, values in zip(OUTPUT_NAMES, y_all, strict=True):
-        if name not in _STATE_OUTPUTS:
+    for name, values in zip(output_names, y_all, strict=True):
+        if name not in state_names:
             columns_out[name] = values
     columns_out["V_p_ref"] = u_all
     if sensors is not None:
         for name in SENSOR_NAMES:
-            column = OUTPUT_NAMES.index(name)
+            column = output_names.index(name)
             reading = quantise(y_all[column] + y_errors[:count, column], y_steps[column])
             columns_out[f"{name}_measured"] = reading
     for index in range(nz):
-        columns_out[f"z_{index}"] = states[len(STATE_NAMES) + index]
-    for name, values in zip(EXOGENOUS_NAMES, exogenous[:count].T, strict=True):
+        columns_out[f"z_{index}"] = states[len(state_names) + index]
+    for name, values in zip(layout.exogenous_names, exogenous[:count].T, strict=True):
         columns_out[name] = values
     time_rows = time_s[:count]
     events = find_events(
@@ -291,9 +304,10 @@ def simulate(
         "wall_time_s": wall_s,
         "real_time_factor": count * period_s / wall_s,
         "validity": dataclasses.asdict(monitor.bounds),
+        "machine": scenario.plant.machine,
     }
     result = SimulationResult(
-        time_rows, columns_out, carry[: len(STATE_NAMES)].copy(), events, metadata
+        time_rows, columns_out, carry[: len(state_names)].copy(), events, metadata
     )
     if violation is not None:
         raise ModelValidityError.stopping(violation, result)
@@ -335,16 +349,18 @@ def _rolled(period: ca.Function, chunk: int) -> ca.Function:
     return _ROLLED[key]
 
 
-def _sensor_errors(sensors: SensorModel | None, count: int) -> tuple[np.ndarray, np.ndarray]:
+def _sensor_errors(
+    sensors: SensorModel | None, count: int, output_names: tuple[str, ...] = OUTPUT_NAMES
+) -> tuple[np.ndarray, np.ndarray]:
     """Per-period additive errors (count + 1, outputs) and converter steps (outputs) of the
     controller's sensors; zero outside :data:`~loader_model.control.sensors.SENSOR_NAMES`."""
-    errors = np.zeros((count + 1, len(OUTPUT_NAMES)))
-    steps = np.zeros(len(OUTPUT_NAMES))
+    errors = np.zeros((count + 1, len(output_names)))
+    steps = np.zeros(len(output_names))
     if sensors is None:
         return errors, steps
     if not isinstance(sensors, SensorModel):
         raise TypeError(f"sensors must be a SensorModel or None; got {type(sensors).__name__}")
-    columns = [OUTPUT_NAMES.index(name) for name in SENSOR_NAMES]
+    columns = [output_names.index(name) for name in SENSOR_NAMES]
     errors[:, columns] = sensors.errors(count + 1)
     steps[columns] = sensors.quantisation
     return errors, steps

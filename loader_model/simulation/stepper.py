@@ -32,7 +32,9 @@ from collections.abc import Callable
 import casadi as ca
 
 from loader_model.control.sensors import quantise
-from loader_model.plant.plant import EXOGENOUS_NAMES, OUTPUT_NAMES, STATE_NAMES, plant_function
+from loader_model.machines import DEFAULT_MACHINE
+from loader_model.plant.layout import plant_layout
+from loader_model.plant.plant import plant_function
 from loader_model.simulation.compiled import CompilationError, compiled_function
 
 __all__ = ["compile_period", "lu_solver", "period_function"]
@@ -76,7 +78,10 @@ def lu_solver(matrix: ca.SX) -> Callable[[ca.SX], ca.SX]:
 
 
 def period_function(
-    controller: ca.Function, period_s: float = 1e-3, substeps: int = 1
+    controller: ca.Function,
+    period_s: float = 1e-3,
+    substeps: int = 1,
+    machine: str = DEFAULT_MACHINE,
 ) -> ca.Function:
     """One controller period of the closed loop (module notes) as an SX Function.
 
@@ -100,20 +105,22 @@ def period_function(
         ``quantise(y + y_error, y_step)`` (:func:`~loader_model.control.sensors.quantise`):
         the sensors' offset and noise of this period and their converter steps (0: exact).
     """
-    plant = plant_function()
-    nx, nz = len(STATE_NAMES), controller.size1_in(0)
+    layout = plant_layout(machine)
+    plant = plant_function(machine)
+    nx, nz = len(layout.state_names), controller.size1_in(0)
+    n_w, n_y = len(layout.exogenous_names), len(layout.output_names)
     carry = ca.SX.sym("carry", nx + nz + 1)
     x, z, u_previous = carry[:nx], carry[nx : nx + nz], carry[nx + nz]
-    w0 = ca.SX.sym("w0", len(EXOGENOUS_NAMES))
-    w1 = ca.SX.sym("w1", len(EXOGENOUS_NAMES))
+    w0 = ca.SX.sym("w0", n_w)
+    w1 = ca.SX.sym("w1", n_w)
     params = ca.SX.sym("params", plant.size1_in(3))
     settings = ca.SX.sym("settings", controller.size1_in(2))
-    y_error = ca.SX.sym("y_error", len(OUTPUT_NAMES))
-    y_step = ca.SX.sym("y_step", len(OUTPUT_NAMES))
+    y_error = ca.SX.sym("y_error", n_y)
+    y_step = ca.SX.sym("y_step", n_y)
     _, y = plant(x, u_previous, w0, params)  # y does not depend on u (checked in the tests)
     z_next, u = controller(z, quantise(y + y_error, y_step), settings)
     step = period_s / substeps
-    xs, us, ws = ca.SX.sym("x", nx), ca.SX.sym("u"), ca.SX.sym("w", len(EXOGENOUS_NAMES))
+    xs, us, ws = ca.SX.sym("x", nx), ca.SX.sym("u"), ca.SX.sym("w", n_w)
     rate_s = plant(xs, us, ws, params)[0]
     rate_and_jacobian = ca.Function(
         "rate_and_jacobian", [xs, us, ws, params], [rate_s, ca.jacobian(rate_s, xs)]
@@ -129,7 +136,7 @@ def period_function(
         state = state + 1.5 * step * k1 + 0.5 * step * k2
     outputs = ca.cse(ca.vertcat(state, z_next, u, y, u))
     carry_next = outputs[: nx + nz + 1]
-    y_out = outputs[nx + nz + 1 : nx + nz + 1 + len(OUTPUT_NAMES)]
+    y_out = outputs[nx + nz + 1 : nx + nz + 1 + n_y]
     return ca.Function(
         "closed_loop_period",
         [carry, w0, w1, params, settings, y_error, y_step],
@@ -139,11 +146,15 @@ def period_function(
     )
 
 
-_COMPILED: dict[tuple[str, float, int, bool], tuple[ca.Function, str]] = {}
+_COMPILED: dict[tuple[str, float, int, bool, str], tuple[ca.Function, str]] = {}
 
 
 def compile_period(
-    controller: ca.Function, period_s: float = 1e-3, substeps: int = 1, jit: bool = True
+    controller: ca.Function,
+    period_s: float = 1e-3,
+    substeps: int = 1,
+    jit: bool = True,
+    machine: str = DEFAULT_MACHINE,
 ) -> tuple[ca.Function, str]:
     """The period Function, compiled to C if ``jit`` and a C compiler works; cached per process
     and, compiled, per machine (:mod:`~loader_model.simulation.compiled`).
@@ -154,9 +165,9 @@ def compile_period(
         The Function and its backend, ``"jit"`` (compiled C) or ``"sx"`` (the fallback when
         compiling fails).
     """
-    key = (controller.serialize(), float(period_s), int(substeps), bool(jit))
+    key = (controller.serialize(), float(period_s), int(substeps), bool(jit), machine)
     if key not in _COMPILED:
-        period = period_function(controller, period_s, substeps)
+        period = period_function(controller, period_s, substeps, machine)
         compiled, backend = period, "sx"
         if jit:
             try:

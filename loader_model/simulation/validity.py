@@ -55,8 +55,8 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
-import loader_model_generated as generated
-from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
+from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
+from loader_model.plant.layout import plant_layout
 from loader_model.simulation._checks import as_number
 from loader_model.simulation.travel import DEFAULT_TYRE_RADIUS_M
 
@@ -116,18 +116,42 @@ class ValidityBounds:
             object.__setattr__(self, field.name, number)
 
 
-def _parameter(params: np.ndarray, name: str) -> float:
-    return float(params[PLANT_PARAMETER_NAMES.index(name)])
+def _parameter(params: np.ndarray, name: str, machine: str = DEFAULT_MACHINE) -> float:
+    return float(params[plant_layout(machine).parameter_names.index(name)])
 
 
-def _stability_angles(params: np.ndarray, tyre_radius_m: float) -> tuple[float, float]:
-    """Static stability angles (nose-down, nose-up) in rad about the front and rear contacts."""
-    m1, m2 = _parameter(params, "m_1"), _parameter(params, "m_2")
-    x_cg = m2 * _parameter(params, "G_x") / (m1 + m2)  # H is the chassis's centre of gravity
-    y_cg = m2 * _parameter(params, "G_y") / (m1 + m2)
-    axles = sorted(
-        (_parameter(params, f"{a}_x"), _parameter(params, f"{a}_y") - tyre_radius_m) for a in "AB"
+@functools.cache
+def _bodies(machine: str) -> tuple[tuple[str, str | None], ...]:
+    """(mass parameter, centre-of-gravity point or None for the chassis at H) of every body."""
+    import tomllib
+
+    info = plant_layout(machine).machine
+    raw = tomllib.loads(info.description_path.read_text(encoding="utf-8"))["bodies"]
+    return tuple(
+        (body["mass"], None if body["joint"] == "free" else body["centre_of_gravity"])
+        for body in raw.values()
     )
+
+
+def _stability_angles(
+    params: np.ndarray, tyre_radius_m: float, machine: str = DEFAULT_MACHINE
+) -> tuple[float, float]:
+    """Static stability angles (nose-down, nose-up) in rad about the front and rear contacts."""
+
+    def value(name: str) -> float:
+        return _parameter(params, name, machine)
+
+    bodies = _bodies(machine)
+    total = sum(value(mass) for mass, _ in bodies)
+    moving = [(value(mass), point) for mass, point in bodies if point is not None]
+    # H is the chassis's centre of gravity
+    x_cg = sum(mass * value(f"{point}_x") for mass, point in moving) / total
+    y_cg = sum(mass * value(f"{point}_y") for mass, point in moving) / total
+    axles = sorted(
+        (value(f"{a}_x"), value(f"{a}_y") - tyre_radius_m)
+        for a in plant_layout(machine).machine.axles
+    )
+    axles = [axles[0], axles[-1]]
     (rear_x, rear_y), (front_x, front_y) = axles
     reach = (front_x - x_cg, x_cg - rear_x)
     height = (y_cg - front_y, y_cg - rear_y)
@@ -141,22 +165,26 @@ def _stability_angles(params: np.ndarray, tyre_radius_m: float) -> tuple[float, 
 
 
 @functools.cache
-def _kinematics_grid() -> tuple[np.ndarray, ca.Function]:
+def _kinematics_grid(machine: str = DEFAULT_MACHINE) -> tuple[np.ndarray, ca.Function]:
     """The grid of φ over a turn and the cylinder kinematics mapped over it, built once."""
     phi = np.arange(-math.pi, math.pi + _GRID_STEP_RAD / 2, _GRID_STEP_RAD)
-    return phi, generated.function("cylinder_kinematics").map(phi.size)
+    info = plant_layout(machine).machine
+    return phi, info.function("cylinder_kinematics").map(phi.size)
 
 
-def _boom_range(params: np.ndarray) -> tuple[float, float]:
+def _boom_range(params: np.ndarray, machine: str = DEFAULT_MACHINE) -> tuple[float, float]:
     """φ − φ0 (down, up magnitudes) in rad that the stroke allows, with the end-stop margin,
     within the linkage's dead points (module notes)."""
-    mechanical = params[: len(generated.PARAMETER_NAMES)]
-    completed, _ = generated.function("complete_parameters")(mechanical)
-    phi, kinematics = _kinematics_grid()
-    p = np.vstack([np.zeros((3, phi.size)), phi])  # x_cyl depends on φ = θ2 − θ1 only
-    length, _, slope, _ = kinematics(p, np.zeros((4, phi.size)), ca.repmat(completed, 1, phi.size))
-    piston = np.asarray(length).ravel() - _parameter(params, "L_retracted")
-    stroke = _parameter(params, "stroke")
+    layout = plant_layout(machine)
+    mechanical = params[: layout.n_mechanical]
+    completed, _ = layout.machine.function("complete_parameters")(mechanical)
+    phi, kinematics = _kinematics_grid(machine)
+    n = layout.n_coordinates
+    # x_cyl depends on φ = θ2 − θ1 only (the lift cylinder between chassis and boom)
+    p = np.vstack([np.zeros((3, phi.size)), phi, np.zeros((n - 4, phi.size))])
+    length, _, slope, _ = kinematics(p, np.zeros((n, phi.size)), ca.repmat(completed, 1, phi.size))
+    piston = np.asarray(length).ravel() - _parameter(params, "L_retracted", machine)
+    stroke = _parameter(params, "stroke", machine)
     sign = np.sign(np.asarray(slope).ravel())
     zero = int(np.argmin(np.abs(phi)))
     ranges = []
@@ -181,15 +209,18 @@ def _boom_range(params: np.ndarray) -> tuple[float, float]:
 
 
 @functools.lru_cache(maxsize=64)
-def _bounds_cached(key: bytes, tyre_radius_m: float) -> ValidityBounds:
+def _bounds_cached(key: bytes, tyre_radius_m: float, machine: str) -> ValidityBounds:
     params = np.frombuffer(key, dtype=float)
-    down, up = _stability_angles(params, tyre_radius_m)
-    boom_down, boom_up = _boom_range(params)
+    down, up = _stability_angles(params, tyre_radius_m, machine)
+    boom_down, boom_up = _boom_range(params, machine)
     return ValidityBounds(down, up, boom_down, boom_up)
 
 
 def validity_bounds(
-    params: np.ndarray, *, tyre_radius_m: float = DEFAULT_TYRE_RADIUS_M
+    params: np.ndarray,
+    *,
+    tyre_radius_m: float = DEFAULT_TYRE_RADIUS_M,
+    machine: str = DEFAULT_MACHINE,
 ) -> ValidityBounds:
     """The default bounds of the plant ``params`` (module notes), cached per parameter vector.
 
@@ -199,6 +230,9 @@ def validity_bounds(
         Plant parameters (:data:`~loader_model.plant.plant_parameters.PLANT_PARAMETER_NAMES`).
     tyre_radius_m : float
         Tyre radius in m, (0, 2]: the contact points lie this far below the axles.
+    machine : str
+        The machine of ``params`` (default the skid-steer): its bodies' masses and centres of
+        gravity, its outermost axles and its lift cylinder's kinematics.
 
     Returns
     -------
@@ -211,18 +245,22 @@ def validity_bounds(
     ValueError
         If the centre of gravity does not lie between and above the contact points.
     """
+    name = resolve_machine_name(machine)
+    size = len(plant_layout(name).parameter_names)
     vector = np.ascontiguousarray(params, dtype=float).ravel()
-    if vector.size != len(PLANT_PARAMETER_NAMES):
-        raise ValueError(f"params must have {len(PLANT_PARAMETER_NAMES)} values; got {vector.size}")
+    if vector.size != size:
+        raise ValueError(f"params must have {size} values; got {vector.size}")
     radius = as_number(tyre_radius_m, "tyre_radius_m", "m", minimum=0.0, maximum=2.0,
                        strict_minimum=True)  # fmt: skip
-    return _bounds_cached(vector.tobytes(), radius)
+    return _bounds_cached(vector.tobytes(), radius, name)
 
 
-def resolve_bounds(validity: ValidityBounds | None, params: np.ndarray) -> ValidityBounds:
-    """``validity`` checked, or the defaults of ``params`` when None."""
+def resolve_bounds(
+    validity: ValidityBounds | None, params: np.ndarray, *, machine: str = DEFAULT_MACHINE
+) -> ValidityBounds:
+    """``validity`` checked, or the defaults of ``params`` (of ``machine``) when None."""
     if validity is None:
-        return validity_bounds(params)
+        return validity_bounds(params, machine=machine)
     if not isinstance(validity, ValidityBounds):
         raise TypeError(f"validity must be a ValidityBounds or None; got {type(validity).__name__}")
     return validity

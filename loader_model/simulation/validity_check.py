@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from loader_model.plant.layout import PlantLayout
 from loader_model.plant.plant import OUTPUT_NAMES, STATE_NAMES
 from loader_model.simulation.result import Event, SimulationResult
 from loader_model.simulation.validity import ValidityBounds
@@ -28,10 +29,6 @@ __all__ = [
     "ValidityViolation",
     "raise_if_not_finite",
 ]
-
-_THETA_1, _THETA_2 = STATE_NAMES.index("theta_1"), STATE_NAMES.index("theta_2")
-_F_AY, _F_BY = OUTPUT_NAMES.index("F_Ay"), OUTPUT_NAMES.index("F_By")
-_SEAT = (OUTPUT_NAMES.index("f_Sx"), OUTPUT_NAMES.index("f_Sy"))
 
 
 class SimulationError(ValueError):
@@ -142,9 +139,24 @@ class ValidityMonitor:
         The bounds.
     period_s : float
         Row spacing h in s.
+    layout : PlantLayout, optional
+        The plant's names (default the skid-steer's): pitch θ1, boom θ2 − θ1, the outermost
+        axles' vertical loads and the seat point's specific forces.
     """
 
-    def __init__(self, bounds: ValidityBounds, period_s: float) -> None:
+    def __init__(
+        self, bounds: ValidityBounds, period_s: float, layout: PlantLayout | None = None
+    ) -> None:
+        states = STATE_NAMES if layout is None else layout.state_names
+        outputs = OUTPUT_NAMES if layout is None else layout.output_names
+        axles = ("A", "B") if layout is None else layout.machine.axles
+        seat = "S" if layout is None else layout.machine.seat_point
+        self._state_names = states
+        self._theta = states.index("theta_1"), states.index("theta_2")
+        self._tyres = outputs.index(f"F_{axles[0]}y"), outputs.index(f"F_{axles[-1]}y")
+        self._tyre_signal = f"F_{axles[0]}y, F_{axles[-1]}y"
+        self._seat = outputs.index(f"f_{seat}x"), outputs.index(f"f_{seat}y")
+        self._seat_signals = f"f_{seat}x", f"f_{seat}y"
         self.bounds = bounds
         self._period_s = float(period_s)
         self._airborne_rows = 0  # consecutive airborne rows that end the rows checked so far
@@ -166,12 +178,14 @@ class ValidityMonitor:
             (n, len(OUTPUT_NAMES)) plant outputs of the rows.
         """
         bounds = self.bounds
+        seat_columns, (front, rear) = list(self._seat), self._tyres
         if self._seat_static is None:
-            self._seat_static = outputs[0, _SEAT].copy()
-        theta = states[:, _THETA_1]
-        phi = states[:, _THETA_2] - theta
-        seat = outputs[:, _SEAT] - self._seat_static
-        airborne = self._airborne_time((outputs[:, _F_AY] <= 0.0) & (outputs[:, _F_BY] <= 0.0))
+            self._seat_static = outputs[0, seat_columns].copy()
+        theta = states[:, self._theta[0]]
+        phi = states[:, self._theta[1]] - theta
+        seat = outputs[:, seat_columns] - self._seat_static
+        airborne = self._airborne_time((outputs[:, front] <= 0.0) & (outputs[:, rear] <= 0.0))
+        seat_x, seat_y = self._seat_signals
         accel, flight = bounds.seat_acceleration_m_s2, bounds.airborne_s * (1 + 1e-9)
         within = (  # the common case in a few reductions (NaN is never within: checked below)
             -bounds.pitch_down_rad <= theta.min()
@@ -188,9 +202,9 @@ class ValidityMonitor:
             ("pitch_up_rad", "theta_1", theta, bounds.pitch_up_rad, theta > bounds.pitch_up_rad),
             ("boom_down_rad", "phi", phi, -bounds.boom_down_rad, phi < -bounds.boom_down_rad),
             ("boom_up_rad", "phi", phi, bounds.boom_up_rad, phi > bounds.boom_up_rad),
-            ("airborne_s", "F_Ay, F_By", airborne, bounds.airborne_s, airborne > flight),
-            ("seat_acceleration_m_s2", "f_Sx", seat[:, 0], accel, np.abs(seat[:, 0]) > accel),
-            ("seat_acceleration_m_s2", "f_Sy", seat[:, 1], accel, np.abs(seat[:, 1]) > accel),
+            ("airborne_s", self._tyre_signal, airborne, bounds.airborne_s, airborne > flight),
+            ("seat_acceleration_m_s2", seat_x, seat[:, 0], accel, np.abs(seat[:, 0]) > accel),
+            ("seat_acceleration_m_s2", seat_y, seat[:, 1], accel, np.abs(seat[:, 1]) > accel),
         )  # fmt: skip
         first: tuple[int, str, str, float, float] | None = None
         for bound, signal, values, limit, beyond in candidates:
@@ -208,9 +222,7 @@ class ValidityMonitor:
             (start + row) * self._period_s,
             value,
             limit,
-            dict(
-                zip(STATE_NAMES, (float(v) for v in states[row, : len(STATE_NAMES)]), strict=True)
-            ),
+            dict(zip(self._state_names, (float(v) for v in states[row]), strict=False)),
         )
 
     def _airborne_time(self, off: np.ndarray) -> np.ndarray:
@@ -229,10 +241,15 @@ class ValidityMonitor:
 
 
 def raise_if_not_finite(
-    carry: np.ndarray, outputs: np.ndarray, start: int, period_s: float
+    carry: np.ndarray,
+    outputs: np.ndarray,
+    start: int,
+    period_s: float,
+    state_names: tuple[str, ...] = STATE_NAMES,
 ) -> None:
     """Raise :class:`SimulationError` naming the time and the last finite state if a chunk's
-    carry (columns: periods) or outputs hold a non-finite number."""
+    carry (columns: periods) or outputs hold a non-finite number (``state_names``: the
+    plant's, default the skid-steer's)."""
     bad = ~(np.all(np.isfinite(carry), axis=0) & np.all(np.isfinite(outputs), axis=0))
     if not bad.any():
         return
@@ -242,7 +259,7 @@ def raise_if_not_finite(
         "the state at the chunk's start"
         if previous is None
         else ", ".join(
-            f"{n}={v:.6g}" for n, v in zip(STATE_NAMES, previous[: len(STATE_NAMES)], strict=True)
+            f"{n}={v:.6g}" for n, v in zip(state_names, previous[: len(state_names)], strict=True)
         )
     )
     raise SimulationError(

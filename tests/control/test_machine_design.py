@@ -1,0 +1,52 @@
+"""Control design for a described machine other than the skid-steer (issue 23): the comfort plant of
+the compact wheel loader, and settings whose norms are scaled with large designed gains."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from loader_model.control.comfort_design import comfort_plants, evaluate_gain
+from loader_model.control.controllers import controller_function
+from loader_model.control.settings import (
+    SETTINGS_NAMES,
+    default_settings,
+    settings_vector,
+    with_scaled_gains,
+)
+from loader_model.plant.scenario import resolve_plant
+
+MACHINE = "compact_wheel_loader"
+
+
+def test_scaled_norms_give_the_same_control_law() -> None:
+    gain = (10.5, -54.4, 211.4, 39.0)
+    plain = default_settings()  # the raw gains are out of the file's range: compare the laws
+    scaled = with_scaled_gains(plain, gain, "test")
+    assert max(abs(k) for k in scaled.k_fb) <= 50.0 + 1e-12
+    function = controller_function("skyhook")
+    kwargs = {"pressure_norm": 6e6, "max_displacement": 4.6e-5, "hold_command": 0.0,
+              "gravity": 9.80665, "accelerometer_x": 1.25}  # fmt: skip
+    raw = settings_vector(plain, **kwargs)  # the shipped norms, the raw (out-of-range) gains
+    raw[[SETTINGS_NAMES.index(n) for n in ("k_x", "k_y", "k_theta", "k_phi")]] = gain
+    vector = settings_vector(scaled, **kwargs)
+    rng = np.random.default_rng(0)
+    for _ in range(5):
+        y = np.array([0.3, 9.9, 10.2, 0.01, 4e6]) + rng.normal(0.0, 0.5, 5)
+        z = rng.normal(0.0, 0.1, 4)
+        # the filter states are semi-integrals of the normalised signals: scaled with them
+        factor = (
+            raw[[SETTINGS_NAMES.index(n) for n in ("a_norm", "a_norm", "alpha_norm")]]
+            / (vector[[SETTINGS_NAMES.index(n) for n in ("a_norm", "a_norm", "alpha_norm")]])
+        )
+        z_scaled = np.r_[z[:3] * factor, z[3]]
+        u_raw = float(function(z, y, raw)[1])
+        u_scaled = float(function(z_scaled, y, vector)[1])
+        assert u_raw != 0.0
+        assert abs(u_scaled - u_raw) <= 1e-9 * abs(u_raw)
+
+
+def test_wheel_loader_comfort_plant_and_table3_gain() -> None:
+    params = {load: resolve_plant(None, load, machine=MACHINE) for load in ("empty", "full")}
+    plants = comfort_plants(("empty", "full"), params=params)
+    evaluations = evaluate_gain(plants, (2.75, 5.1, -4.0, 0.22))
+    assert all(np.isfinite(e.a_total) and 0.5 < e.a_total < 10.0 for e in evaluations)
