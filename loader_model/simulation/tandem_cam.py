@@ -59,6 +59,9 @@ from loader_model.simulation._checks import as_number
 from loader_model.simulation.cam_envelope import cam_height
 from loader_model.simulation.roads import RoadProfile
 
+#: Spacing over a_e below which the plane slope is taken in its limit l_s -> 0.
+_MIN_SPACING_FRACTION = 1e-6
+
 __all__ = [
     "CAM_EXPONENT",
     "CAM_HEIGHT_RATIO",
@@ -253,6 +256,9 @@ def tandem_cam_axles(
     z, dz = cam_height(profile, np.stack([s + 0.5 * spacing, s - 0.5 * spacing]), shape)
     height = 0.5 * (z[0] + z[1])
     rate = 0.5 * (dz[0] + dz[1])
+    # below a micrometre per metre of cam the difference quotient is rounding error over l_s: use
+    # its limit l_s -> 0, the cams' own slope (a spacing of 3e-16 m gave 0.33 for 0)
+    spread = spacing > _MIN_SPACING_FRACTION * shape.half_length_m
     with np.errstate(divide="ignore", invalid="ignore"):
-        slope = np.where(spacing > 0.0, (z[0] - z[1]) / np.where(spacing > 0.0, spacing, 1.0), rate)
+        slope = np.where(spread, (z[0] - z[1]) / np.where(spread, spacing, 1.0), rate)
     return TandemCamRoad(height, slope, rate)

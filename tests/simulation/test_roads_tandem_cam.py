@@ -272,3 +272,14 @@ def test_bad_input_names_the_argument_and_value(call, message):
     with pytest.raises(ValueError, match=message):
         call()
     assert MAXIMUM_DEFLECTION_RATIO * R_M == pytest.approx(0.105)
+
+
+def test_a_vanishing_spacing_takes_the_slope_in_its_limit():
+    """Hypothesis found l_s = 3e-16 m: the difference quotient over l_s was rounding (0.33 for a
+    flat stretch); below 1e-6 a_e the plane slope is the cams' own, as at l_s = 0."""
+    profile = single_board(height_m=H_M, width_m=L_M, position_m=1.0)
+    s = np.linspace(0.0, 2.0, 201)
+    tiny = tandem_cam_road(profile, s, TandemCam(0.43, 0.42, 1.8, 3e-16))
+    zero = tandem_cam_road(profile, s, TandemCam(0.43, 0.42, 1.8, 0.0))
+    np.testing.assert_allclose(tiny.slope, zero.slope, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(tiny.height_m, zero.height_m, rtol=0, atol=1e-12)
