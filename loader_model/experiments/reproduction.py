@@ -90,6 +90,7 @@ def build_reproduction(folder: Path, options: ReportOptions) -> dict[str, object
         comfort_rows,
         shipped_budget,
     )
+    from loader_model.experiments.machine_report import machine_rows
     from loader_model.experiments.table6 import run_trials, table6_cells
     from loader_model.experiments.tables import (
         gain_rows,
@@ -125,6 +126,9 @@ def build_reproduction(folder: Path, options: ReportOptions) -> dict[str, object
         tables["cause_linear"] = cause_rows("empty", 9.0)
         tables["cause_gains"] = gain_rows_linear("empty", 9.0)
         timings["linear cause analysis (beside the trials)"] = time.perf_counter() - mark
+        mark = time.perf_counter()
+        tables.update(machine_rows())
+        timings["the second machine (beside the trials)"] = time.perf_counter() - mark
 
     mark = time.perf_counter()
     gains = designed_gains()
@@ -198,6 +202,7 @@ def build_reproduction(folder: Path, options: ReportOptions) -> dict[str, object
 
 def _markdown(options, tables, within, count, lifts, timings, budget) -> str:
     from loader_model.experiments.discrepancies import discrepancy_section
+    from loader_model.experiments.machine_report import machine_section
 
     parts = [
         "# Reproduction of Williamson, Lee, Ivantysynova (2009) on the default loader\n",
@@ -254,6 +259,7 @@ def _markdown(options, tables, within, count, lifts, timings, budget) -> str:
         markdown_table(tables["designed"]) + "\n",
         discrepancy_section(tables, within, count, lifts, budget[1]),
         *(section + "\n" for section in options.appendix),
+        machine_section(tables),
         "## Timings (this run)\n",
         markdown_table([["stage", "wall time [s]"]] + [[k, f"{v:.1f}"] for k, v in timings.items()])
         + "\n",
