@@ -17,7 +17,8 @@ which 12 000 path rows; the unconstrained LQ command peaks at 1.47 × V_p,max th
 - CasADi's ``conic`` with OSQP (eps 1e-9, polish) stopped at 20 000 iterations after 650 s,
   not converged (largest scaled row violation 5e-5; a_total 0.34643 against the
   unconstrained 0.34631 m/s², command peak 0.95 × V_p,max);
-- HiGHS' QP solver had not finished after 300 s;
+- HiGHS' QP solver had not finished after 300 s; this module's IPOPT (tol 1e-8, at most
+  300 iterations) had not returned after 400 s;
 - a primal-dual active-set iteration on the sparse KKT system of
   :func:`~loader_model.bound.linear.solve_kkt` cycles between two active sets: the
   M = 10 path rows of one interval are nearly linearly dependent (one command value moves all
