@@ -11,6 +11,22 @@ asks for many times the pump's displacement on the 40 mm boards).
 
 Status (work in progress): IPOPT converges slowly here (it regularises the KKT system at every
 iteration; 40 iterations on a 3 s course did not reach its tolerance), so no command uses it yet.
+Measured on the 3 s, 5 mm test course (300 command values, 12 300 variables, 24 003 rows of
+which 12 000 path rows; the unconstrained LQ command peaks at 1.47 × V_p,max there):
+
+- CasADi's ``conic`` with OSQP (eps 1e-9, polish) stopped at 20 000 iterations after 650 s,
+  not converged (largest scaled row violation 5e-5; a_total 0.34643 against the
+  unconstrained 0.34631 m/s², command peak 0.95 × V_p,max);
+- HiGHS' QP solver had not finished after 300 s; this module's IPOPT (tol 1e-8, at most
+  300 iterations) had not returned after 400 s;
+- a primal-dual active-set iteration on the sparse KKT system of
+  :func:`~loader_model.bound.linear.solve_kkt` cycles between two active sets: the
+  M = 10 path rows of one interval are nearly linearly dependent (one command value moves all
+  of them), so the active constraints' Jacobian is rank deficient.
+
+What should work: one rate and pressure row per interval (not per period) where the rows of an
+interval are dependent, or a structure-exploiting interior point (HPIPM, shipped with CasADi,
+takes the stage-wise form z_{j+1} = A z_j + B u_j + d_j directly).
 """
 
 from __future__ import annotations
