@@ -7,6 +7,8 @@ states start at the static equilibrium. ``--controller`` closes the loop inside 
 of the project's discrete 1 kHz controllers, kept discrete and sampled by FMI time events (not a
 continuous equivalent; see :mod:`loader_model.fmu.closed_loop`): the pump command is then an
 output and the controller's settings (Table 3, the shipped defaults) are FMU parameters.
+``--machine`` exports another described machine's plant (``--controller none`` only), with the
+names and sizes of its plant layout.
 """
 
 from __future__ import annotations
@@ -14,7 +16,7 @@ from __future__ import annotations
 import argparse
 import time
 
-from loader_model.commands.common import add_model_arguments
+from loader_model.commands.common import add_model_arguments, machine_from_arguments
 
 HELP = "export the nonlinear plant as an FMI 2.0 Model Exchange FMU"
 
@@ -28,8 +30,9 @@ CONTROLLER_CHOICES = {
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add ``--params``, ``--load``, ``--controller``, ``--no-sources`` and ``OUTPUT.fmu``."""
-    add_model_arguments(parser)
+    """Add ``--machine``, ``--params``, ``--load``, ``--controller``, ``--no-sources`` and
+    ``OUTPUT.fmu``."""
+    add_model_arguments(parser, machine=True)
     parser.add_argument(
         "--controller",
         choices=list(CONTROLLER_CHOICES),
@@ -51,6 +54,9 @@ def run(args: argparse.Namespace) -> int:
 
     check_output_path(args.output, (".fmu",), "FMU")  # before any work
     find_compiler()  # a clear error before the parameter files are read
+    info = machine_from_arguments(args)
+    if not info.is_default:
+        return _run_machine(args, info.name)
     from loader_model.plant.plant_parameters import plant_parameter_vector
     from loader_model.vehicle.statics import resolve_machine
 
@@ -77,6 +83,30 @@ def run(args: argparse.Namespace) -> int:
     what = "plant" if controller is None else f"plant + {args.controller} controller"
     print(
         f"wrote {path}: {what}, FMI 2.0 Model Exchange, linux64, {size_kb:.0f} kB, "
+        f"built in {seconds:.1f} s"
+    )
+    return 0
+
+
+def _run_machine(args: argparse.Namespace, machine: str) -> int:
+    """The plant FMU of another described machine (its flat parameter file and load case)."""
+    from loader_model.fmu.build import export_plant_fmu
+    from loader_model.plant.scenario import resolve_plant
+
+    if args.controller != "none":
+        raise ValueError(
+            f"--controller {args.controller}: a closed-loop FMU is built for the skid-steer "
+            f"only; export {machine!r} with --controller none"
+        )
+    params = resolve_plant(args.params, args.load, machine=machine).params
+    started = time.perf_counter()
+    path = export_plant_fmu(
+        args.output, params, include_sources=not args.no_sources, machine=machine
+    )
+    seconds = time.perf_counter() - started
+    size_kb = path.stat().st_size / 1024
+    print(
+        f"wrote {path}: {machine} plant, FMI 2.0 Model Exchange, linux64, {size_kb:.0f} kB, "
         f"built in {seconds:.1f} s"
     )
     return 0

@@ -28,21 +28,13 @@ from loader_model.control.controllers import controller_state_names
 from loader_model.control.settings import SETTINGS_NAMES
 from loader_model.fmu.closed_loop import closed_loop_functions, closed_loop_variables
 from loader_model.fmu.model_description import MODEL_IDENTIFIER, model_description_xml
-from loader_model.fmu.variables import (
-    COMPLETED_PARAMETERS,
-    FMU_PARAMETER_NAMES,
-    fmu_variables,
-)
+from loader_model.fmu.variables import fmu_parameter_names, fmu_variables
 from loader_model.io.export import check_output_path, write_atomically
+from loader_model.machines import DEFAULT_MACHINE
+from loader_model.machines import machine as machine_info
 from loader_model.plant.equilibrium import equilibrium_function, static_state
-from loader_model.plant.plant import (
-    EXOGENOUS_NAMES,
-    INPUT_NAMES,
-    OUTPUT_NAMES,
-    STATE_NAMES,
-    plant_function,
-)
-from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
+from loader_model.plant.layout import plant_layout
+from loader_model.plant.plant import plant_function
 
 __all__ = ["export_plant_fmu", "find_compiler", "fmu_functions"]
 
@@ -78,22 +70,23 @@ def _platform_folder() -> str:
     )
 
 
-def fmu_functions() -> tuple[ca.Function, ca.Function]:
+def fmu_functions(machine: str = DEFAULT_MACHINE) -> tuple[ca.Function, ca.Function]:
     """``fmu_ode(x, in, p) -> (xdot, y)`` and ``fmu_start(p) -> x0`` over the FMU's parameters.
 
-    ``in`` is (V_p_ref, w); ``p`` is ordered as :data:`~loader_model.fmu.variables.
-    FMU_PARAMETER_NAMES` (the static tyre loads, which the plant completes, are fixed at 0).
+    ``in`` is (V_p_ref, w); ``p`` is ordered as :func:`~loader_model.fmu.variables.
+    fmu_parameter_names` of ``machine`` (default the skid-steer; the parameters the plant
+    completes, its static tyre loads and preloads, are fixed at 0).
     """
-    p = ca.SX.sym("p", len(FMU_PARAMETER_NAMES))
-    given = dict(zip(FMU_PARAMETER_NAMES, ca.vertsplit(p), strict=True))
-    full = ca.vertcat(
-        *[ca.SX(0) if n in COMPLETED_PARAMETERS else given[n] for n in PLANT_PARAMETER_NAMES]
-    )
-    x = ca.SX.sym("x", len(STATE_NAMES))
-    inputs = ca.SX.sym("in", len(INPUT_NAMES) + len(EXOGENOUS_NAMES))
-    xdot, y = plant_function()(x, inputs[0], inputs[1:], full)
+    layout = plant_layout(machine_info(machine).name)
+    names = fmu_parameter_names(machine)
+    p = ca.SX.sym("p", len(names))
+    given = dict(zip(names, ca.vertsplit(p), strict=True))
+    full = ca.vertcat(*[given.get(n, ca.SX(0)) for n in layout.parameter_names])
+    x = ca.SX.sym("x", len(layout.state_names))
+    inputs = ca.SX.sym("in", len(layout.input_names) + len(layout.exogenous_names))
+    xdot, y = plant_function(machine)(x, inputs[0], inputs[1:], full)
     ode = ca.Function("fmu_ode", [x, inputs, p], [xdot, y], ["x", "in", "p"], ["xdot", "y"])
-    x0 = equilibrium_function()(full)[0]
+    x0 = equilibrium_function(machine)(full)[0]
     start = ca.Function("fmu_start", [p], [x0], ["p"], ["x0"])
     return ode, start
 
@@ -107,15 +100,22 @@ def _c_array(values: np.ndarray) -> str:
 
 
 def _write_sources(
-    folder: Path, params: np.ndarray, controller: str | None, settings: np.ndarray | None
+    folder: Path,
+    params: np.ndarray,
+    controller: str | None,
+    settings: np.ndarray | None,
+    machine: str = DEFAULT_MACHINE,
 ) -> tuple[bytes, str]:
     """Write the C sources into ``folder``; return (modelDescription.xml, model identifier)."""
-    ode, start = fmu_functions()
+    info = machine_info(machine)
+    layout = plant_layout(info.name)
+    n_p = len(fmu_parameter_names(info.name))
+    ode, start = fmu_functions(info.name)
     generator = ca.CodeGenerator("fmu_model.c", {"with_header": True})
     generator.add(ode)
     generator.add(start)
-    x0, u0 = static_state(params)
-    variables = fmu_variables(params, x0, u0)
+    x0, u0 = static_state(params, info.name)
+    variables = fmu_variables(params, x0, u0, info.name)
     identifier, n_set, n_z = MODEL_IDENTIFIER, 0, 0
     if controller is not None:
         sample, init = closed_loop_functions(controller, ode, start)
@@ -123,7 +123,7 @@ def _write_sources(
         generator.add(init)
         variables = closed_loop_variables(variables, controller, settings)
         identifier = f"loader_{controller}"
-        n_set, n_z = sample.size1_in(2) - len(FMU_PARAMETER_NAMES), sample.size1_in(3)
+        n_set, n_z = sample.size1_in(2) - n_p, sample.size1_in(3)
     generator.generate(str(folder) + os.sep)
     source = (folder / "fmu_model.c").read_bytes()
     digest = hashlib.sha256(source + repr(variables).encode()).hexdigest()
@@ -134,11 +134,11 @@ def _write_sources(
         "/* written by loader_model.fmu.build; do not edit */\n"
         + ("#define CLOSED_LOOP 1\n" if controller is not None else "")
         + f'#define MODEL_GUID "{guid}"\n'
-        f"#define N_P {len(FMU_PARAMETER_NAMES)}\n"
+        f"#define N_P {n_p}\n"
         f"#define N_SET {n_set}\n"
-        f"#define N_IN {len(INPUT_NAMES) + len(EXOGENOUS_NAMES)}\n"
-        f"#define N_X {len(STATE_NAMES)}\n"
-        f"#define N_Y {len(OUTPUT_NAMES)}\n"
+        f"#define N_IN {len(layout.input_names) + len(layout.exogenous_names)}\n"
+        f"#define N_X {len(layout.state_names)}\n"
+        f"#define N_Y {len(layout.output_names)}\n"
         f"#define N_Z {n_z}\n"
         + (f"#define VR_TS {_names(variables).index('controller.T_s')}\n" if n_set else "")
         + f"#define START_VALUES {_c_array(starts)}\n"
@@ -149,11 +149,11 @@ def _write_sources(
     from loader_model import __version__ as version
 
     what = "the plant alone" if controller is None else f"plant and {controller} controller"
+    title = "skid-steer loader" if info.is_default else info.title
     xml = model_description_xml(
         variables,
         guid,
-        f"Nonlinear skid-steer loader (loader-model): {what}; states start at the static "
-        "equilibrium",
+        f"Nonlinear {title} (loader-model): {what}; states start at the static equilibrium",
         f"loader-model {version} (CasADi {ca.__version__} code generation, FMI 2.0 wrapper)",
         model_identifier=identifier,
     )
@@ -190,6 +190,7 @@ def export_plant_fmu(
     controller: str | None = None,
     settings: np.ndarray | None = None,
     include_sources: bool = True,
+    machine: str = DEFAULT_MACHINE,
 ) -> Path:
     """Build a Model Exchange FMU (FMI 2.0, linux64) of the nonlinear plant and write ``path``.
 
@@ -209,6 +210,11 @@ def export_plant_fmu(
         settings_vector_for_plant`); required with ``controller``.
     include_sources : bool
         Also put the C sources into ``sources/`` of the FMU (for inspection and rebuilding).
+    machine : str
+        A machine of :func:`~loader_model.machines.list_machines` or its description file
+        (default the skid-steer); ``params`` is then in its plant layout's order
+        (:func:`~loader_model.plant.layout.plant_layout`). The closed loop is the skid-steer's
+        only.
 
     Returns
     -------
@@ -222,11 +228,17 @@ def export_plant_fmu(
         written then.
     """
     target = check_output_path(path, (".fmu",), "FMU")
+    info = machine_info(machine)
+    n_params = len(plant_layout(info.name).parameter_names)
     params = np.asarray(params, dtype=float)
-    if params.shape != (len(PLANT_PARAMETER_NAMES),) or not np.all(np.isfinite(params)):
+    if params.shape != (n_params,) or not np.all(np.isfinite(params)):
         raise ValueError(
-            f"params must be {len(PLANT_PARAMETER_NAMES)} finite plant parameters; "
-            f"got shape {params.shape}"
+            f"params must be {n_params} finite plant parameters; got shape {params.shape}"
+        )
+    if controller is not None and not info.is_default:
+        raise ValueError(
+            f"a closed-loop FMU is built for the skid-steer only; export {info.name!r} with "
+            "--controller none"
         )
     if controller is not None:
         controller_state_names(controller)  # ValueError naming the allowed ones
@@ -238,7 +250,7 @@ def export_plant_fmu(
         build = Path(temporary)
         sources = build / "sources"
         sources.mkdir()
-        xml, identifier = _write_sources(sources, params, controller, settings)
+        xml, identifier = _write_sources(sources, params, controller, settings, info.name)
         library = build / f"{identifier}.so"
         _compile(compiler, sources, library)
 

@@ -26,8 +26,10 @@ import casadi as ca
 import numpy as np
 
 from loader_model.fmu.variables import state_nominals
+from loader_model.machines import DEFAULT_MACHINE
 from loader_model.plant.equilibrium import static_state
-from loader_model.plant.plant import EXOGENOUS_NAMES, INPUT_NAMES, OUTPUT_NAMES, plant_function
+from loader_model.plant.layout import plant_layout
+from loader_model.plant.plant import EXOGENOUS_NAMES, INPUT_NAMES, plant_function
 
 __all__ = ["CrossCheck", "bump_input", "cross_check", "reference_response"]
 
@@ -81,6 +83,7 @@ def reference_response(
     reltol: float = 1e-11,
     controller: str | None = None,
     settings: np.ndarray | None = None,
+    machine: str = DEFAULT_MACHINE,
 ) -> dict[str, np.ndarray]:
     """Outputs of the plant Function integrated by cvodes with the input held over each step.
 
@@ -88,13 +91,15 @@ def reference_response(
     controller Function reads the sensors of y(t_k) and its command is held until t_{k+1}; its
     states start at their fixed point (:func:`~loader_model.control.linear_controller.
     linear_controller`). The time grid must then be the controller's sample grid. The command is
-    returned as ``V_p_ref``.
+    returned as ``V_p_ref``. ``machine`` (default the skid-steer) is the plant's machine; ``w``
+    then has the columns of its exogenous inputs (the same names as the skid-steer's).
     """
-    plant = plant_function()
-    x0, u0 = static_state(params)
-    nominal = state_nominals(x0, params)
+    layout = plant_layout(machine)
+    plant = plant_function(machine)
+    x0, u0 = static_state(params, machine)
+    nominal = state_nominals(x0, params, machine)
     z = ca.SX.sym("z", x0.size)
-    held = ca.SX.sym("w", len(EXOGENOUS_NAMES))
+    held = ca.SX.sym("w", len(layout.exogenous_names))
     command = ca.SX.sym("u")
     xdot, _ = plant(nominal * z, command, held, params)
     steps = np.diff(time)
@@ -131,7 +136,8 @@ def reference_response(
     x = np.array(states) * nominal
     outputs = plant.map(time.size)(x.T, np.array(commands)[None, :], w.T, params)[1]
     y = np.asarray(outputs)
-    return {name: y[i] for i, name in enumerate(OUTPUT_NAMES)} | {"V_p_ref": np.array(commands)}
+    named = {name: y[i] for i, name in enumerate(layout.output_names)}
+    return named | {"V_p_ref": np.array(commands)}
 
 
 def cross_check(
@@ -140,6 +146,7 @@ def cross_check(
     reltol: float = 1e-8,
     controller: str | None = None,
     settings: np.ndarray | None = None,
+    machine: str = DEFAULT_MACHINE,
 ) -> CrossCheck:
     """Simulate ``fmu_path`` with FMPy over :func:`bump_input` and compare with the reference.
 
@@ -158,7 +165,9 @@ def cross_check(
     import fmpy
 
     time, w = bump_input()
-    reference = reference_response(params, time, w, controller=controller, settings=settings)
+    reference = reference_response(
+        params, time, w, controller=controller, settings=settings, machine=machine
+    )
     compared = COMPARED if controller is None else (*COMPARED, "V_p_ref")
     # a staircase table (each sample repeated at the next sample's time): FMPy then stops at
     # every sample as an input event and restarts CVode there, so the input is exactly held
@@ -168,7 +177,7 @@ def cross_check(
     signal = np.zeros(stairs.size, dtype=[("time", float)] + [(name, float) for name in names])
     signal["time"] = stairs
     if controller is None:
-        signal[INPUT_NAMES[0]] = static_state(params)[1]
+        signal[INPUT_NAMES[0]] = static_state(params, machine)[1]
     for i, name in enumerate(EXOGENOUS_NAMES):
         signal[name] = held[:, i]
     result = fmpy.simulate_fmu(

@@ -13,6 +13,11 @@ Real in one array indexed by its value reference:
 - outputs (output): :data:`~loader_model.plant.plant.OUTPUT_NAMES`.
 
 The one Boolean (value reference 0) is ``start_at_equilibrium``.
+
+Another described machine (issue 23) has the same blocks with the names of its plant layout
+(:func:`~loader_model.plant.layout.plant_layout`); its completed parameters are its
+``static_names`` (tyre loads and locked-cylinder preloads). Units and descriptions of names the
+skid-steer lacks follow from their form (``theta_3``: rad, ``f_Bx``: a specific force, ...).
 """
 
 from __future__ import annotations
@@ -22,6 +27,16 @@ from dataclasses import dataclass
 import numpy as np
 
 import loader_model_generated as generated
+from loader_model.fmu.variable_tables import (
+    _AXLE,
+    _EXOGENOUS_UNITS,
+    _NOMINAL_FLOOR,
+    _OUTPUTS,
+    _STATE_DESCRIPTIONS,
+    _STATE_UNITS,
+)
+from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
+from loader_model.plant.layout import PlantLayout, plant_layout
 from loader_model.plant.plant import EXOGENOUS_NAMES, INPUT_NAMES, OUTPUT_NAMES, STATE_NAMES
 from loader_model.plant.plant_parameters import (
     HYDRAULIC_PARAMETERS,
@@ -34,6 +49,7 @@ __all__ = [
     "COMPLETED_PARAMETERS",
     "FMU_PARAMETER_NAMES",
     "FmuVariable",
+    "fmu_parameter_names",
     "fmu_parameter_values",
     "fmu_variables",
     "state_nominals",
@@ -45,73 +61,6 @@ COMPLETED_PARAMETERS: tuple[str, ...] = ("F_Ay0", "F_By0")
 FMU_PARAMETER_NAMES: tuple[str, ...] = tuple(
     name for name in PLANT_PARAMETER_NAMES if name not in COMPLETED_PARAMETERS
 )
-
-_EXOGENOUS_UNITS = dict.fromkeys(EXOGENOUS_NAMES[0:4], "m") | dict.fromkeys(
-    EXOGENOUS_NAMES[4:8], "m/s"
-)
-_EXOGENOUS_UNITS |= {"F_dx": "N", "F_dy": "N", "M_d": "N*m"}
-_AXLE = {"A": "front axle A", "B": "rear axle B"}
-_STATE_UNITS = {
-    "x_H": "m",
-    "y_H": "m",
-    "theta_1": "rad",
-    "theta_2": "rad",
-    "xd_H": "m/s",
-    "yd_H": "m/s",
-    "thetad_1": "rad/s",
-    "thetad_2": "rad/s",
-    "xi_A": "m",
-    "xi_B": "m",
-    "p_A": "Pa",
-    "p_B": "Pa",
-    "V_p": "m^3/rev",
-    "Vd_p": "m^3/(rev*s)",
-    "V_acc": "m^3",
-    **{name: "m" for name in ("u_Px", "u_Ox", "u_Py", "u_Oy")},
-    **{name: "m/s" for name in ("ud_Px", "ud_Ox", "ud_Py", "ud_Oy")},
-}
-_STATE_DESCRIPTIONS = {
-    "x_H": "chassis centre of gravity H, forward, from static equilibrium",
-    "y_H": "chassis centre of gravity H, up, from static equilibrium",
-    "theta_1": "chassis pitch angle (nose up positive)",
-    "theta_2": "boom angle (absolute)",
-    "xi_A": "horizontal tyre anchor of the front axle (stick-slip contact)",
-    "xi_B": "horizontal tyre anchor of the rear axle (stick-slip contact)",
-    "p_A": "piston-side pressure, gauge (Eq. 36)",
-    "p_B": "rod-side pressure, gauge (Eq. 37)",
-    "V_p": "pump displacement (Fig. 9)",
-    "Vd_p": "rate of the pump displacement (Fig. 9)",
-    "V_acc": "oil volume in the accumulator(s)",
-    "u_Px": "seat pad relative to S, forward, from the static deflection",
-    "u_Ox": "occupant's moving mass relative to S, forward, from the static deflection",
-    "u_Py": "seat pad relative to S, up, from the static deflection",
-    "u_Oy": "occupant's moving mass relative to S, up, from the static deflection",
-}
-#: Smallest nominal magnitude of each state (absolute tolerance = relative tolerance × nominal).
-_NOMINAL_FLOOR = {"m": 1e-3, "rad": 1e-3, "m/s": 1e-2, "rad/s": 1e-2, "Pa": 1e5}
-_OUTPUTS = {
-    "xd_H": ("m/s", "forward velocity of H (Eq. 40)"),
-    "yd_H": ("m/s", "vertical velocity of H (Eq. 40)"),
-    "thetad_1": ("rad/s", "chassis pitch rate (Eq. 40)"),
-    "phi": ("rad", "boom angle relative to the chassis, theta_2 - theta_1 (Eq. 40)"),
-    "f_Hx": ("m/s^2", "specific force at H, forward (accelerometer, gravity included)"),
-    "f_Hy": ("m/s^2", "specific force at H, up (accelerometer, gravity included)"),
-    "f_Ny": ("m/s^2", "specific force at the forward sensor point N, up"),
-    "f_Sx": ("m/s^2", "specific force of the chassis at the seat base S, forward"),
-    "f_Sy": ("m/s^2", "specific force of the chassis at the seat base S, up"),
-    "thetadd_1": ("rad/s^2", "chassis pitch acceleration"),
-    "p_A": ("Pa", "piston-side pressure, gauge"),
-    "p_B": ("Pa", "rod-side pressure, gauge"),
-    "F_act": ("N", "cylinder force, all cylinders (Eq. 31)"),
-    "x_piston": ("m", "piston position from the retracted end"),
-    "V_p": ("m^3/rev", "pump displacement"),
-    "Q_pump": ("m^3/s", "pump flow"),
-    "F_Ay": ("N", "vertical tyre force at the front axle"),
-    "F_By": ("N", "vertical tyre force at the rear axle"),
-    "p_acc": ("Pa", "accumulator gas pressure, gauge"),
-    "f_Px": ("m/s^2", "seat pad under the occupant, forward (gravity included, section 5.3)"),
-    "f_Py": ("m/s^2", "seat pad under the occupant, up (gravity included, section 5.3)"),
-}
 
 
 @dataclass(frozen=True)
@@ -150,9 +99,58 @@ def _unit(unit: str) -> str:
     return "" if unit == "-" else unit
 
 
-def _parameter_description(name: str) -> str:
+def _parameter_description(name: str, layout: PlantLayout | None = None) -> str:
     hydraulic = {item[0]: item[2] for item in HYDRAULIC_PARAMETERS + OCCUPANT_PARAMETERS}
+    if layout is not None and name in layout.machine.parameter_descriptions:
+        return layout.machine.parameter_descriptions[name] or name
     return generated.PARAMETER_DESCRIPTIONS.get(name) or hydraulic[name]
+
+
+def _parameter_unit(name: str, layout: PlantLayout | None) -> str:
+    if layout is not None and name in layout.machine.parameter_units:
+        return layout.machine.parameter_units[name]
+    return PLANT_PARAMETER_UNITS[name]
+
+
+def _layout(machine: str) -> PlantLayout | None:
+    """None for the skid-steer (the module constants), else the machine's plant layout."""
+    name = resolve_machine_name(machine)
+    return None if name == DEFAULT_MACHINE else plant_layout(name)
+
+
+def fmu_parameter_names(machine: str = DEFAULT_MACHINE) -> tuple[str, ...]:
+    """The FMU's parameters of ``machine`` in value-reference order (its completed ones left out).
+
+    For the skid-steer: :data:`FMU_PARAMETER_NAMES`.
+    """
+    layout = _layout(machine)
+    if layout is None:
+        return FMU_PARAMETER_NAMES
+    completed = set(layout.machine.static_names)
+    return tuple(name for name in layout.parameter_names if name not in completed)
+
+
+def _state_unit(name: str) -> str:
+    if name in _STATE_UNITS:
+        return _STATE_UNITS[name]
+    if name.startswith("thetad_"):
+        return "rad/s"
+    if name.startswith("theta_"):
+        return "rad"
+    return "m/s" if name.endswith("d") or "d_" in name else "m"
+
+
+def _output(name: str, layout: PlantLayout | None) -> tuple[str, str]:
+    if name in _OUTPUTS or layout is None:
+        return _OUTPUTS[name]
+    if name in layout.machine.joint_angles:
+        return "rad", f"joint angle {name} of a pinned body relative to its parent"
+    if name in (item[0] for item in layout.sensor_outputs):
+        axis = "forward" if name[-1] == "x" else "up"
+        return "m/s^2", f"specific force at point {name[2:-1]}, {axis} (gravity included)"
+    if name.startswith("F_") and name.endswith("y"):
+        return "N", f"vertical tyre force at axle {name[2:-1]}"
+    return "", name
 
 
 def _exogenous_description(name: str) -> str:
@@ -167,29 +165,35 @@ def _exogenous_description(name: str) -> str:
     }[name]
 
 
-def fmu_parameter_values(params: np.ndarray) -> np.ndarray:
-    """The FMU's parameter values (order :data:`FMU_PARAMETER_NAMES`) from a plant vector."""
-    index = [PLANT_PARAMETER_NAMES.index(name) for name in FMU_PARAMETER_NAMES]
+def fmu_parameter_values(params: np.ndarray, machine: str = DEFAULT_MACHINE) -> np.ndarray:
+    """The FMU's parameter values (order :func:`fmu_parameter_names`) from a plant vector."""
+    layout = _layout(machine)
+    names = PLANT_PARAMETER_NAMES if layout is None else layout.parameter_names
+    index = [names.index(name) for name in fmu_parameter_names(machine)]
     return np.asarray(params, dtype=float)[index]
 
 
-def state_nominals(x0: np.ndarray, params: np.ndarray) -> np.ndarray:
+def state_nominals(
+    x0: np.ndarray, params: np.ndarray, machine: str = DEFAULT_MACHINE
+) -> np.ndarray:
     """Nominal magnitude of each state: its static value, at least a floor of its unit."""
-    values = dict(zip(PLANT_PARAMETER_NAMES, np.asarray(params, dtype=float), strict=True))
+    layout = _layout(machine)
+    names = PLANT_PARAMETER_NAMES if layout is None else layout.parameter_names
+    states = STATE_NAMES if layout is None else layout.state_names
+    values = dict(zip(names, np.asarray(params, dtype=float), strict=True))
     floors = _NOMINAL_FLOOR | {
         "m^3/rev": values["V_p_max"],
         "m^3/(rev*s)": values["Vd_p_max"],
         "m^3": max(values["n_acc"] * values["V_0"], 1e-4),
     }
     return np.array(
-        [
-            max(abs(float(v)), floors[_STATE_UNITS[name]])
-            for name, v in zip(STATE_NAMES, x0, strict=True)
-        ]
+        [max(abs(float(v)), floors[_state_unit(name)]) for name, v in zip(states, x0, strict=True)]
     )
 
 
-def fmu_variables(params: np.ndarray, x0: np.ndarray, u0: float) -> list[FmuVariable]:
+def fmu_variables(
+    params: np.ndarray, x0: np.ndarray, u0: float, machine: str = DEFAULT_MACHINE
+) -> list[FmuVariable]:
     """Every Real variable in value-reference order (module docstring), with start values.
 
     Parameters
@@ -198,12 +202,20 @@ def fmu_variables(params: np.ndarray, x0: np.ndarray, u0: float) -> list[FmuVari
         Plant parameter vector (order ``PLANT_PARAMETER_NAMES``): the parameters' start values.
     x0, u0
         Static state and pump command of ``params``: the states' and V_p_ref's start values.
+    machine : str
+        The machine (default the skid-steer); ``params`` and ``x0`` are in its layout's orders.
     """
+    layout = _layout(machine)
+    exogenous = EXOGENOUS_NAMES if layout is None else layout.exogenous_names
+    states = STATE_NAMES if layout is None else layout.state_names
+    outputs = OUTPUT_NAMES if layout is None else layout.output_names
     out: list[FmuVariable] = []
     fixed = ("parameter", "fixed", "exact")
-    for name, value in zip(FMU_PARAMETER_NAMES, fmu_parameter_values(params), strict=True):
-        unit = _unit(PLANT_PARAMETER_UNITS[name])
-        out.append(FmuVariable(name, len(out), *fixed, unit, _parameter_description(name), value))
+    values = fmu_parameter_values(params, machine)
+    for name, value in zip(fmu_parameter_names(machine), values, strict=True):
+        unit = _unit(_parameter_unit(name, layout))
+        description = _parameter_description(name, layout)
+        out.append(FmuVariable(name, len(out), *fixed, unit, description, value))
     out.append(
         FmuVariable(
             INPUT_NAMES[0],
@@ -216,7 +228,7 @@ def fmu_variables(params: np.ndarray, x0: np.ndarray, u0: float) -> list[FmuVari
             u0,
         )
     )
-    for name in EXOGENOUS_NAMES:
+    for name in exogenous:
         out.append(
             FmuVariable(
                 name,
@@ -229,9 +241,11 @@ def fmu_variables(params: np.ndarray, x0: np.ndarray, u0: float) -> list[FmuVari
                 0.0,
             )
         )
-    nominals = state_nominals(x0, params)
-    for i, name in enumerate(STATE_NAMES):
-        description = _STATE_DESCRIPTIONS.get(name) or f"rate of {name.replace('d', '', 1)}"
+    nominals = state_nominals(x0, params, machine)
+    for i, name in enumerate(states):
+        description = _STATE_DESCRIPTIONS.get(name) or (
+            f"rate of {name.replace('d', '', 1)}" if "d_" in name else f"coordinate {name}"
+        )
         out.append(
             FmuVariable(
                 f"x.{name}",
@@ -239,14 +253,14 @@ def fmu_variables(params: np.ndarray, x0: np.ndarray, u0: float) -> list[FmuVari
                 "local",
                 "continuous",
                 "approx",
-                _STATE_UNITS[name],
+                _state_unit(name),
                 f"state: {description} (start: static equilibrium)",
                 float(x0[i]),
                 nominal=float(nominals[i]),
             )
         )
-    for name in STATE_NAMES:
-        unit = _STATE_UNITS[name]
+    for name in states:
+        unit = _state_unit(name)
         out.append(
             FmuVariable(
                 f"der(x.{name})",
@@ -259,8 +273,8 @@ def fmu_variables(params: np.ndarray, x0: np.ndarray, u0: float) -> list[FmuVari
                 derivative_of=f"x.{name}",
             )
         )
-    for name in OUTPUT_NAMES:
-        unit, description = _OUTPUTS[name]
+    for name in outputs:
+        unit, description = _output(name, layout)
         out.append(
             FmuVariable(name, len(out), "output", "continuous", "calculated", unit, description)
         )
