@@ -43,14 +43,15 @@ _IDEAL = np.array([1.0] * 5 + [0.0] * 5)
 _HOLDING = ("baseline", "passive")
 
 
-def _hold_controller() -> Any:
-    """The baseline's constant command as its one setting, built once per process (one compiled
-    period for every sampled plant)."""
+def _hold_controller(machine: str = "skid_steer") -> Any:
+    """The baseline's constant command as its one setting, built once per process and machine
+    (one compiled period for every sampled plant)."""
     from loader_model.simulation.controllers import hold_command_controller
 
-    if "hold" not in _CONTROLLERS:
-        _CONTROLLERS["hold"] = hold_command_controller()
-    return _CONTROLLERS["hold"]
+    key = "hold" if machine == "skid_steer" else f"hold:{machine}"
+    if key not in _CONTROLLERS:
+        _CONTROLLERS[key] = hold_command_controller(machine)
+    return _CONTROLLERS[key]
 
 
 def _course(study: Study, spec: SampleSpec) -> Any:
@@ -97,6 +98,15 @@ _EMPTY = dict.fromkeys(
 )
 
 
+def _pressure_norm(plant: PlantScenario) -> float:
+    """‖p_A‖∞ of the controllers' normalisation: the load's (skid-steer) or the machine's."""
+    if plant.machine == "skid_steer":
+        return float(plant.load.pressure_normalisation)
+    from loader_model.plant.machine_parameters import pressure_norm
+
+    return pressure_norm(plant.output("p_A"))
+
+
 def _reason(error: BaseException) -> str:
     return f"{type(error).__name__}: {error}"[:500]
 
@@ -124,7 +134,7 @@ def _run(
 
     plant = plant.with_options((plant.options or PlantOptions()).with_controller(name))
     if name in _HOLDING:
-        scenario = closed_loop(plant, _hold_controller(), [plant.u0], name=name)
+        scenario = closed_loop(plant, _hold_controller(plant.machine), [plant.u0], name=name)
     else:
         kind = "virtual-accumulator" if name == "virtual-accumulator" else "skyhook"
         settings = default_settings()
@@ -133,7 +143,7 @@ def _run(
         vector, state = plant_controller_setup(kind, plant, load[1], settings)
         if np.any(errors != _IDEAL):
             state = corrupted_fixed_point(kind, vector, plant, errors)
-        controller = sensor_controller(kind)
+        controller = sensor_controller(kind, plant.machine)
         scenario = Scenario(plant, controller, np.concatenate([vector, errors]), state, name)
     result = simulate(
         road, scenario, duration_s=study.duration_s, sensors=None if name in _HOLDING else sensors
@@ -171,7 +181,7 @@ def run_sample(study: Study, gains: Gains, spec: SampleSpec) -> list[dict[str, A
     errors = sensor_errors(dict(spec.values))
     noise = sensor_model(dict(spec.values), spec.road_seed)
     try:
-        plant = sample_plant(spec)
+        plant = sample_plant(spec, study.machine)
         road = course_input(_course(study, spec), plant)
         setup_error = None
     except Exception as error:  # a failed sample never stops the study
@@ -191,7 +201,7 @@ def run_sample(study: Study, gains: Gains, spec: SampleSpec) -> list[dict[str, A
             row |= {"failed": True, "reason": setup_error}
         else:
             try:
-                case = (spec.load, float(plant.load.pressure_normalisation))
+                case = (spec.load, _pressure_norm(plant))
                 row |= _run(study, gains, name, plant, case, road, errors, noise)
                 row |= {"failed": False, "reason": ""}
             except Exception as error:  # a failed run never stops the study

@@ -148,7 +148,7 @@ def sample_plant_vector(spec: SampleSpec) -> tuple[np.ndarray, Any]:
     return plant_parameter_vector(loader, load, check=True), load
 
 
-def sample_plant(spec: SampleSpec) -> PlantScenario:
+def sample_plant(spec: SampleSpec, machine: str = "skid_steer") -> PlantScenario:
     """The sample's plant (accumulator shut), resolved once: the vector of
     :func:`sample_plant_vector` with its static equilibrium
     (:func:`~loader_model.plant.scenario.resolve_plant`).
@@ -157,7 +157,14 @@ def sample_plant(spec: SampleSpec) -> PlantScenario:
     ------
     ValueError
         From the parameter files' range and consistency checks.
+
+    ``machine`` (default the skid-steer): another machine's plant from its flat parameter file
+    (:func:`~loader_model.robustness.machine_study.machine_sample_plant`).
     """
     from loader_model.plant.scenario import resolve_plant
 
+    if machine != "skid_steer":
+        from loader_model.robustness.machine_study import machine_sample_plant
+
+        return machine_sample_plant(spec, machine)
     return resolve_plant(*_sample_sets(spec))

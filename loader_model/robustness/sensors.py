@@ -56,7 +56,7 @@ SENSOR_ERROR_FIELDS: Mapping[str, tuple[str, Range]] = {
     **{f"sensors.{n}.offset": _OFFSETS[n] for n in _SENSORS},
     **{f"sensors.{n}.noise_std": _NOISE[n] for n in _SENSORS},
 }
-_CONTROLLERS: dict[str, Any] = {}
+_CONTROLLERS: dict[Any, Any] = {}
 
 
 def sensor_errors(values: Mapping[str, float]) -> np.ndarray:
@@ -75,17 +75,22 @@ def sensor_model(values: Mapping[str, float], seed: int) -> Any:
     return SensorModel(noise_std=noise, seed=int(seed)) if any(noise) else None
 
 
-def sensor_controller(kind: str) -> Any:
+def sensor_controller(kind: str, machine: str | None = None) -> Any:
     """``controller(z, y, [settings; errors]) -> (z_next, u)``: ride controller ``kind`` on
-    corrupted readings (module notes), built once per process."""
+    corrupted readings (module notes), built once per process and machine (None or the
+    skid-steer: the paper's plant; another: its plant layout's outputs)."""
     import casadi as ca
 
     from loader_model.control.sensors import SENSOR_NAMES
+    from loader_model.plant.layout import plant_layout
     from loader_model.plant.plant import OUTPUT_NAMES
     from loader_model.simulation.ride_control import plant_controller
 
-    if kind not in _CONTROLLERS:
-        inner = plant_controller(kind)
+    machine = None if machine in (None, "skid_steer") else machine
+    key = kind if machine is None else (kind, machine)
+    if key not in _CONTROLLERS:
+        inner = plant_controller(kind, machine)
+        names = OUTPUT_NAMES if machine is None else plant_layout(machine).output_names
         z = ca.SX.sym("z", inner.size1_in(0))
         y = ca.SX.sym("y", inner.size1_in(1))
         settings = ca.SX.sym("settings", inner.size1_in(2) + 2 * len(SENSOR_NAMES))
@@ -94,17 +99,17 @@ def sensor_controller(kind: str) -> Any:
         offsets = settings[count + len(SENSOR_NAMES) :]
         read = [y[i] for i in range(y.numel())]
         for j, name in enumerate(SENSOR_NAMES):
-            index = OUTPUT_NAMES.index(name)
+            index = names.index(name)
             read[index] = gains[j] * y[index] + offsets[j]
         z_next, u = inner(z, ca.vertcat(*read), settings[:count])
-        _CONTROLLERS[kind] = ca.Function(
+        _CONTROLLERS[key] = ca.Function(
             f"{inner.name()}_sensor_errors",
             [z, y, settings],
             [z_next, u],
             ["z", "y", "settings"],
             ["z_next", "u"],
         )
-    return _CONTROLLERS[kind]
+    return _CONTROLLERS[key]
 
 
 def corrupted_fixed_point(
@@ -116,7 +121,7 @@ def corrupted_fixed_point(
     from loader_model.control.sensors import sensor_signals
     from loader_model.simulation.ride_control import RIDE_CONTROLLERS
 
-    readings = sensor_signals(plant.y0)
+    readings = sensor_signals(plant.y0, plant.machine)
     readings = errors[:5] * readings + errors[5:]
     fixed = linear_controller(RIDE_CONTROLLERS[kind], vector, readings)
     return np.asarray(fixed.operating_state, dtype=float).ravel()

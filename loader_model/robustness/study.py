@@ -20,6 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from loader_model.robustness.distributions import Distribution, parse_distribution
+from loader_model.robustness.machine_study import machine_parameter_field, study_machine
 
 __all__ = [
     "COMPARED_CONTROLLERS",
@@ -81,6 +82,9 @@ class Study:
         Number of sampled plants the ``"robust"`` gains are optimised over.
     parameters : tuple of (str, Distribution)
         Uncertain parameters by parameter-file path, in the study file's order.
+    machine : str
+        The machine (``[study] machine``, default the skid-steer); another machine's parameters
+        are its flat file's paths (:mod:`~loader_model.robustness.machine_study`).
     """
 
     name: str
@@ -100,6 +104,7 @@ class Study:
     gains: tuple[tuple[str, str | tuple[float, ...]], ...]
     robust_plants: int
     parameters: tuple[tuple[str, Distribution], ...]
+    machine: str = "skid_steer"
 
     @property
     def controllers(self) -> tuple[str, ...]:
@@ -248,7 +253,9 @@ def _table(data: Mapping[str, Any], name: str) -> dict[str, Any]:
 def _build(data: dict[str, Any], load_cases: tuple[str, ...], course_speeds: tuple) -> Study:
     _keys(data, _SECTIONS, "")
     study = _table(data, "study")
-    _keys(study, ("name", "seed", "samples", "sampling", "duration_s", "batch_size"), "study.")
+    keys = ("name", "seed", "samples", "sampling", "duration_s", "batch_size", "machine")
+    _keys(study, keys, "study.")
+    machine = study_machine(study.get("machine", "skid_steer"))
     if "samples" not in study:
         raise ValueError("study.samples: missing key (the number of samples, >= 1)")
     samples = _integer(study["samples"], "study.samples", 1, 10_000_000)
@@ -276,10 +283,18 @@ def _build(data: dict[str, Any], load_cases: tuple[str, ...], course_speeds: tup
     controllers = _table(data, "controllers")
     _keys(controllers, ("compare", "gains", "robust_plants"), "controllers.")
     gains = _gains(controllers.get("gains", {}))
+    if gains and machine != "skid_steer":
+        raise ValueError(
+            f"controllers.gains: further skyhook gains are designed on the skid-steer only; "
+            f"machine {machine!r} compares the baseline with {list(COMPARED_CONTROLLERS)}"
+        )
     parameters = _table(data, "parameters")
     varied = []
     for path, spec in parameters.items():
-        unit, allowed = parameter_field(path)
+        if machine == "skid_steer":
+            unit, allowed = parameter_field(path)
+        else:
+            unit, allowed = machine_parameter_field(path, machine)
         varied.append((path, parse_distribution(spec, f"parameters.{path}", unit, allowed)))
     return Study(
         name=str(study.get("name", "robustness study")),
@@ -309,6 +324,7 @@ def _build(data: dict[str, Any], load_cases: tuple[str, ...], course_speeds: tup
             controllers.get("robust_plants", 8), "controllers.robust_plants", 1, 200
         ),
         parameters=tuple(varied),
+        machine=machine,
     )
 
 

@@ -1,0 +1,139 @@
+"""A robustness study of another described machine (issue 23): its parameters and its plant.
+
+With ``[study] machine = "compact_wheel_loader"`` the uncertain parameters are named by the
+machine's flat parameter file (:mod:`loader_model.parameters.machine_files`): ``model.<name>``
+for a generated model parameter (unit and range of the description; the static loads the
+equilibrium computes cannot vary), ``cylinders.<field>`` for a scalar real field of the lift
+cylinder group, ``hydraulics.bulk_modulus`` and ``hydraulics.charge_pressure``, and the sensor
+errors of :data:`~loader_model.robustness.sensors.SENSOR_ERROR_FIELDS`. A varied ``model``
+value replaces it in [model] and in every load case that sets it, so the sampled value holds in
+whichever load the sample draws. The plant is then
+:func:`~loader_model.plant.scenario.resolve_plant` with ``machine=``.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import difflib
+import math
+from typing import TYPE_CHECKING, Any
+
+from loader_model.machines import machine as machine_info
+
+if TYPE_CHECKING:
+    from loader_model.plant.scenario import PlantScenario
+    from loader_model.robustness.sampling import SampleSpec
+
+__all__ = [
+    "machine_parameter_field",
+    "machine_sample_parameters",
+    "machine_sample_plant",
+    "study_machine",
+]
+
+
+def _scalar_fields(cls: type, names: tuple[str, ...] | None = None) -> dict[str, Any]:
+    fields = {}
+    for item in dataclasses.fields(cls):
+        if names is not None and item.name not in names:
+            continue
+        meta = item.metadata
+        if "unit" in meta and not meta.get("integer", False) and meta.get("shape", 0) == 0:
+            fields[item.name] = meta
+    return fields
+
+
+def study_machine(value: Any) -> str:
+    """The machine name of ``[study] machine`` (ValueError naming the key and the allowed ones)."""
+    from loader_model.machines import list_machines, resolve_machine_name
+
+    if not isinstance(value, str):
+        raise ValueError(f"study.machine = {value!r}: allowed: one of {list(list_machines())}")
+    try:
+        return resolve_machine_name(value)
+    except ValueError as error:
+        raise ValueError(f"study.machine = {value!r}: {error}") from None
+
+
+def machine_parameter_field(path: str, machine: str) -> tuple[str, Any]:
+    """The SI unit and allowed :class:`~loader_model.parameters.fields.Range` of study parameter
+    ``path`` of ``machine`` (module notes).
+
+    Raises
+    ------
+    ValueError
+        Naming the path, with the closest valid path.
+    """
+    from loader_model.parameters.fields import Range
+    from loader_model.robustness.sensors import SENSOR_ERROR_FIELDS
+
+    if path in SENSOR_ERROR_FIELDS:
+        return SENSOR_ERROR_FIELDS[path]
+    info = machine_info(machine)
+    model = [n for n in info.parameter_names if n not in info.static_names]
+    from loader_model.parameters.hydraulics import CylinderParameters, HydraulicParameters
+    from loader_model.parameters.machine_files import HYDRAULIC_NAMES
+
+    cylinders = _scalar_fields(CylinderParameters)
+    hydraulics = _scalar_fields(HydraulicParameters, HYDRAULIC_NAMES)
+    section, _, name = path.partition(".")
+    if section == "model" and name in model:
+        low, high = info.parameter_ranges.get(name, (-math.inf, math.inf))
+        reason = f"the range of the description of {info.name!r}"
+        return info.parameter_units[name], Range(low, high, reason=reason)
+    if section == "cylinders" and name in cylinders:
+        return cylinders[name]["unit"], cylinders[name]["allowed"]
+    if section == "hydraulics" and name in hydraulics:
+        return hydraulics[name]["unit"], hydraulics[name]["allowed"]
+    valid = [
+        *(f"model.{n}" for n in model),
+        *(f"cylinders.{n}" for n in cylinders),
+        *(f"hydraulics.{n}" for n in hydraulics),
+        *SENSOR_ERROR_FIELDS,
+    ]
+    close = difflib.get_close_matches(path, valid, n=1, cutoff=0.5)
+    hint = f"; did you mean {close[0]!r}?" if close else ""
+    raise ValueError(
+        f"parameters.{path}: unknown parameter of machine {info.name!r}{hint} (names are its "
+        "flat parameter file's paths: 'model.<name>', 'cylinders.<field>', "
+        "'hydraulics.bulk_modulus', or 'sensors.<f_Hx|f_Hy|f_Ny|phi|p_A>.<gain|offset|noise_std>')"
+    )
+
+
+def machine_sample_parameters(spec: SampleSpec, machine: str) -> Any:
+    """The machine's shipped :class:`~loader_model.parameters.machine_files.MachineParameters`
+    with the sample's values (module notes)."""
+    from loader_model.parameters.machine_files import default_machine_parameters
+
+    params = default_machine_parameters(machine_info(machine).name)
+    values = [(p, v) for p, v in spec.values if not p.startswith("sensors.")]
+    model = {p.removeprefix("model."): v for p, v in values if p.startswith("model.")}
+    cylinders = {p.removeprefix("cylinders."): v for p, v in values if p.startswith("cylinders.")}
+    hydraulics = {
+        p.removeprefix("hydraulics."): v for p, v in values if p.startswith("hydraulics.")
+    }
+    loads = {
+        case: entries | {n: v for n, v in model.items() if n in entries}
+        for case, entries in params.loads.items()
+    }
+    return dataclasses.replace(
+        params,
+        model=params.model | model,
+        cylinders=dataclasses.replace(params.cylinders, **cylinders),
+        hydraulics=params.hydraulics | hydraulics,
+        loads=loads,
+    )
+
+
+def machine_sample_plant(spec: SampleSpec, machine: str) -> PlantScenario:
+    """The sample's plant of ``machine`` (accumulator shut; its load case ``spec.load``).
+
+    Raises
+    ------
+    ValueError
+        From the machine's checks (a plant that does not stand at rest, ...).
+    """
+    from loader_model.plant.scenario import resolve_plant
+
+    params = machine_sample_parameters(spec, machine)
+    return resolve_plant(params, spec.load, machine=machine_info(machine).name)
