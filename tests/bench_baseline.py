@@ -52,6 +52,11 @@ import casadi as ca
 import numpy as np
 import sympy as sp
 
+#: States of the loader without the seated occupant: p, ṗ, the tyre anchors, p_A, p_B, V_p, V̇_p,
+#: V_acc. The occupant's reaction on the chassis is neglected in the plant (plant/occupant.py), so
+#: these 15 evolve the same with the occupant on or off.
+LOADER_STATES = 15
+
 __all__ = [
     "BaselineModel",
     "baseline_model",
@@ -348,6 +353,8 @@ class BaselineModel:
                 tyres[1],
                 tyres[3],
                 p_acc,
+                f_s[0],  # the seat pad reads the chassis with the occupant off
+                f_s[1],
             ]
         )
 
@@ -375,12 +382,15 @@ def _hydraulic_function(jacobian: bool = False) -> ca.Function:
     from loader_model.plant import plant
     from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES
 
-    x = ca.SX.sym("x", len(plant.STATE_NAMES))
+    # the loader's 15 states; the occupant's (issue 21) are not in this baseline: the plant runs
+    # with PlantOptions(occupant=False), so they do not act on the loader and the pad reads f_S
+    x = ca.SX.sym("x", LOADER_STATES)
+    full = ca.vertcat(x, ca.SX.zeros(len(plant.STATE_NAMES) - LOADER_STATES))
     u = ca.SX.sym("u", 1)
     params = ca.SX.sym("params", len(PLANT_PARAMETER_NAMES))
     n_mechanical = len(generated.PARAMETER_NAMES)
     completed, _ = generated.function("complete_parameters")(params[:n_mechanical])
-    drive = plant.hydraulic_drive(x, u, plant.named_parameters(params), completed)
+    drive = plant.hydraulic_drive(full, u, plant.named_parameters(params), completed)
     names = ("force", "position", "pump_flow", "p_acc", "rates")
     if jacobian:
         d_drive = ca.jacobian(ca.vertcat(drive["force"], drive["rates"]), x)
@@ -490,7 +500,7 @@ def baseline_simulation(
     from scipy.integrate import solve_ivp
 
     from loader_model.plant.equilibrium import static_state
-    from loader_model.plant.plant import OUTPUT_NAMES, STATE_NAMES
+    from loader_model.plant.plant import OUTPUT_NAMES
     from loader_model.simulation.controllers import CONTROLLER_PERIOD_S, hold_controller
     from loader_model.simulation.simulator import exogenous_table
 
@@ -498,6 +508,7 @@ def baseline_simulation(
     params = np.asarray(params, dtype=float).ravel()
     mechanical = model.completed(params)
     x, command = static_state(params)
+    x = x[:LOADER_STATES]
     controller = hold_controller(command) if controller is None else controller
     z = np.zeros(controller.size1_in(0)) if controller_state is None else controller_state
     z = np.asarray(z, dtype=float).ravel()
@@ -506,7 +517,7 @@ def baseline_simulation(
     count = int(np.floor(duration_s / period + 1e-9))
     time_s = np.arange(count + 1) * period
     exogenous = exogenous_table(road, time_s)
-    states = np.empty((count, len(STATE_NAMES)))
+    states = np.empty((count, LOADER_STATES))
     outputs = np.empty((count, len(OUTPUT_NAMES)))
     commands = np.empty(count)
     evaluations = 0

@@ -27,6 +27,7 @@ def test_reproduce_writes_a_complete_report(tmp_path: Path, capsys) -> None:
     gains = (target / "gains.csv").read_text().strip().splitlines()
     assert [line.split(",")[0] for line in gains[1:]] == [
         "skyhook",
+        "skyhook-printed",
         "skyhook-lqr",
         "skyhook-optimised",
         "skyhook-refined",
@@ -34,5 +35,10 @@ def test_reproduce_writes_a_complete_report(tmp_path: Path, capsys) -> None:
     designed = (target / "designed.csv").read_text().strip().splitlines()
     assert len(designed) == 5 and "Beyond the paper" in text
     trials = (target / "trials.csv").read_text().strip().splitlines()
-    assert len(trials) == 1 + 2 * 2 * 7 * 2  # 4 controllers of the paper + 3 designed
+    assert len(trials) == 1 + 2 * 2 * 8 * 2  # 4 controllers of the paper + printed + 3 designed
+    for name in ("comfort", "fidelity_budget", "calibrated_values", "uncertainty"):
+        assert (target / f"{name}.csv").is_file(), name
+    assert "A second machine: the compact wheel loader" in text
+    assert "Fidelity budget: one modelling step at a time" in text
+    assert "The bound: what the pump could do" in text
     assert "within 10 percentage points" in capsys.readouterr().out

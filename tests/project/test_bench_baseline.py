@@ -19,11 +19,19 @@ import pytest
 
 from loader_model.plant.equilibrium import static_state
 from loader_model.plant.plant import OUTPUT_NAMES, plant_function
-from loader_model.plant.plant_parameters import plant_parameter_vector
+from loader_model.plant.plant_parameters import PlantOptions, plant_parameter_vector
 from loader_model.simulation import paper_course
 from loader_model.simulation.reference import reference_simulation
 from loader_model.simulation.simulator import course_input
-from tests.bench_baseline import baseline_model, baseline_simulation, seat_agreement
+from tests.bench_baseline import (
+    LOADER_STATES,
+    baseline_model,
+    baseline_simulation,
+    seat_agreement,
+)
+
+#: The baseline is the loader without the occupant (its 15 states); the pad then reads f_S.
+NO_OCCUPANT = PlantOptions(occupant=False)
 
 pytestmark = pytest.mark.slow
 
@@ -42,21 +50,26 @@ def model():
 def test_the_lambdified_plant_equals_the_casadi_plant(modules: str) -> None:
     """ẋ and y at perturbed states and inputs, to round-off."""
     model = baseline_model(modules)
-    params = plant_parameter_vector(None, "empty")
+    params = plant_parameter_vector(None, "empty", NO_OCCUPANT)
     mechanical = model.completed(params)
     x0, u0 = static_state(params)
-    scale = np.r_[np.full(8, 1e-2), 1e-3, 1e-3, 1e5, 1e5, 1e-7, 1e-5, 1e-6]
+    x0 = np.r_[x0[:LOADER_STATES], np.zeros(x0.size - LOADER_STATES)]
+    scale = np.r_[np.full(8, 1e-2), 1e-3, 1e-3, 1e5, 1e5, 1e-7, 1e-5, 1e-6, np.zeros(8)]
     rng = np.random.default_rng(12)
     for _ in range(5):
         x = x0 + rng.normal(size=x0.size) * scale
         w = rng.normal(size=11) * np.r_[np.full(8, 1e-2), 100.0, 100.0, 100.0]
         u = u0 * (1 + rng.normal())
         xdot, y = (np.asarray(v, dtype=float).ravel() for v in plant_function()(x, u, w, params))
+        xdot, loader = xdot[:LOADER_STATES], x[:LOADER_STATES]
         np.testing.assert_allclose(
-            model.rhs(x, u, w, params, mechanical), xdot, rtol=1e-9, atol=1e-9 * np.abs(xdot).max()
+            model.rhs(loader, u, w, params, mechanical),
+            xdot,
+            rtol=1e-9,
+            atol=1e-9 * np.abs(xdot).max(),
         )
         np.testing.assert_allclose(
-            model.plant_outputs(x, u, w, params, mechanical), y, rtol=1e-9, atol=1e-6
+            model.plant_outputs(loader, u, w, params, mechanical), y, rtol=1e-9, atol=1e-6
         )
 
 
@@ -64,7 +77,7 @@ def test_the_lambdified_jacobian_equals_casadis() -> None:
     """∂ẋ/∂x of the baseline (SymPy forward differentiation + translated hydraulics) against the
     AD Jacobian of the CasADi plant, at perturbed states."""
     model = baseline_model("math", jacobian=True)
-    params = plant_parameter_vector(None, "empty")
+    params = plant_parameter_vector(None, "empty", NO_OCCUPANT)
     mechanical = model.completed(params)
     plant = plant_function()
     x, u, w, theta = (ca.SX.sym(plant.name_in(i), plant.size1_in(i)) for i in range(4))
@@ -72,21 +85,22 @@ def test_the_lambdified_jacobian_equals_casadis() -> None:
         "plant_jacobian", [x, u, w, theta], [ca.jacobian(plant(x, u, w, theta)[0], x)]
     )
     x0, u0 = static_state(params)
-    scale = np.r_[np.full(8, 1e-2), 1e-3, 1e-3, 1e5, 1e5, 1e-7, 1e-5, 1e-6]
+    scale = np.r_[np.full(8, 1e-2), 1e-3, 1e-3, 1e5, 1e5, 1e-7, 1e-5, 1e-6, np.zeros(8)]
     rng = np.random.default_rng(3)
     for _ in range(3):
         state = x0 + rng.normal(size=x0.size) * scale
         road = rng.normal(size=11) * np.r_[np.full(8, 1e-2), 100.0, 100.0, 100.0]
         command = u0 * (1 + rng.normal())
         want = np.asarray(exact(state, command, road, params), dtype=float)
-        got = model.jacobian(state, command, road, params, mechanical)
+        want = want[:LOADER_STATES, :LOADER_STATES]
+        got = model.jacobian(state[:LOADER_STATES], command, road, params, mechanical)
         np.testing.assert_allclose(got, want, rtol=1e-9, atol=1e-12 * np.abs(want).max())
 
 
 def test_the_baseline_matches_the_cvodes_reference_over_the_first_board(model) -> None:
     """Empty bucket, hold controller, first 2.5 s of the paper's course at 9 km/h: seat trace
     within 0.1 % (the fast simulator's own limit is 6 %, tests/simulation/test_simulator.py)."""
-    params = plant_parameter_vector(None, "empty")
+    params = plant_parameter_vector(None, "empty", NO_OCCUPANT)
     road = course_input(paper_course(9.0, settle_s=10.0), params)
     baseline = baseline_simulation(road, params, duration_s=SPAN_S, model=model)
     reference = reference_simulation(road, params, duration_s=SPAN_S)
