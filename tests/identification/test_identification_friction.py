@@ -149,6 +149,7 @@ def test_chassis_sensors_give_the_plants_cylinder_force(short: SyntheticRecordin
     assert np.all(_relative(fit.values) < 1e-10)  # measured ≤ 1.2e-14
 
 
+@pytest.mark.slow  # 12 s (cvodes record of the 23-state plant)
 def test_without_the_chassis_columns_the_residual_is_kilonewtons(
     short: SyntheticRecording,
 ) -> None:
@@ -167,6 +168,7 @@ def test_noise_free_friction_test_through_the_filters(clean_test: SyntheticRecor
     assert 0.9 < result.used.mean() < 1.0
 
 
+@pytest.mark.slow  # 13 s (cvodes record of the 23-state plant); the seeded sweep is slow too
 def test_noisy_friction_test_recovers_table_4() -> None:
     recording = synthesize(SensorOptions.friction_test(0), LiftProfile.friction_test())
     fit = identify_friction(prepare_signals(recording.record, SHAFT_SPEED), recording.cylinder).fit

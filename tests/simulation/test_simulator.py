@@ -97,6 +97,7 @@ def _compare(
 BASELINE_SUBSTEPS = 8
 
 
+@pytest.mark.slow  # 22 s with 8 substeps and the rtol 1e-10 reference; the first boards stay fast
 def test_baseline_matches_the_cvodes_reference_on_the_paper_course() -> None:
     """Baseline (hold) controller, empty bucket, whole course at 9 km/h: a_w within 1 %."""
     _compare("empty", passive=False, duration_s=None, substeps=BASELINE_SUBSTEPS)
