@@ -1,0 +1,131 @@
+r"""A dense convex QP solved by a primal-dual interior point (Mehrotra predictor-corrector).
+
+.. math:: \min_u \tfrac12 u^T P u + q^T u \quad \text{s.t.}\quad E u = e,\;
+    l \le G u \le h,\; u_{lo} \le u \le u_{hi}
+
+for the condensed bound (:mod:`~loader_model.bound.condensed`): P dense and definite (N up to a
+few thousand), a handful of equality rows, simple bounds and a few thousand general rows. Each
+iteration forms P + diag(D_u) + Gᵀ diag(D_G) G once (the bounds' barrier terms stay diagonal),
+factors it by Cholesky and eliminates the equality rows by their small Schur complement. An
+interior point does not mind nearly dependent rows (the active-set difficulty of
+:mod:`~loader_model.bound.constrained`'s notes). Tolerances are relative: the residuals on the
+scaled rows and the complementarity against the scale of the objective.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg
+
+__all__ = ["QPResult", "solve_dense_qp"]
+
+
+@dataclass(frozen=True)
+class QPResult:
+    """The solution: u, iterations, the largest scaled residual and the mean complementarity."""
+
+    u: np.ndarray
+    iterations: int
+    primal_residual: float
+    dual_residual: float
+    complementarity: float
+    converged: bool
+
+
+def _step(values: np.ndarray, steps: np.ndarray) -> float:
+    negative = steps < 0
+    if not np.any(negative):
+        return 1.0
+    return float(min(1.0, np.min(-values[negative] / steps[negative])))
+
+
+def solve_dense_qp(
+    p: np.ndarray,
+    q: np.ndarray,
+    e_matrix: np.ndarray,
+    e_target: np.ndarray,
+    g: np.ndarray,
+    lower: np.ndarray,
+    upper: np.ndarray,
+    u_lower: float,
+    u_upper: float,
+    *,
+    tolerance: float = 1e-9,
+    max_iterations: int = 80,
+) -> QPResult:
+    """Solve the QP of the module notes; ``tolerance`` relative (module notes)."""
+    n, m = q.size, g.shape[0]
+    # inequalities c(u) = b - C u >= 0 stacked: G u <= h, -G u <= -l, u <= u_hi, -u <= -u_lo
+    b = np.concatenate([upper, -lower, np.full(n, u_upper), np.full(n, -u_lower)])
+
+    def c_times(u: np.ndarray) -> np.ndarray:
+        gu = g @ u
+        return np.concatenate([gu, -gu, u, -u])
+
+    def ct_times(v: np.ndarray) -> np.ndarray:
+        return g.T @ (v[:m] - v[m : 2 * m]) + v[2 * m : 2 * m + n] - v[2 * m + n :]
+
+    u = np.clip(np.zeros(n), u_lower, u_upper)
+    slack = np.maximum(b - c_times(u), 1.0)
+    dual = np.ones_like(slack)
+    y = np.zeros(e_target.size)
+    scale = max(1.0, float(np.max(np.abs(q))), float(np.max(np.abs(np.diag(p)))))
+    converged, iteration = False, 0
+    for _ in range(max_iterations):
+        iteration += 1
+        r_dual = p @ u + q + e_matrix.T @ y + ct_times(dual)
+        r_eq = e_matrix @ u - e_target
+        r_in = c_times(u) + slack - b
+        mu = float(slack @ dual) / slack.size
+        primal = max(float(np.max(np.abs(r_eq), initial=0.0)), float(np.max(np.abs(r_in))))
+        dual_res = float(np.max(np.abs(r_dual))) / scale
+        if primal < tolerance and dual_res < tolerance and mu < tolerance * scale:
+            converged = True
+            break
+        ratio = dual / slack
+        normal = p + g.T @ ((ratio[:m] + ratio[m : 2 * m])[:, None] * g)
+        normal[np.diag_indices(n)] += ratio[2 * m : 2 * m + n] + ratio[2 * m + n :]
+        factor = scipy.linalg.cho_factor(normal)
+        inv_et = scipy.linalg.cho_solve(factor, e_matrix.T)
+        schur = e_matrix @ inv_et
+
+        def direction(
+            target: np.ndarray,
+            slack: np.ndarray = slack,
+            dual: np.ndarray = dual,
+            r_in: np.ndarray = r_in,
+            r_dual: np.ndarray = r_dual,
+            r_eq: np.ndarray = r_eq,
+            factor: tuple = factor,
+            inv_et: np.ndarray = inv_et,
+            schur: np.ndarray = schur,
+        ) -> tuple[np.ndarray, ...]:
+            """Newton step towards slack * dual = target (the Schur complement of E)."""
+            rhs_u = -r_dual - ct_times((dual * r_in + target - slack * dual) / slack)
+            base = scipy.linalg.cho_solve(factor, rhs_u)
+            dy = np.linalg.solve(schur, e_matrix @ base + r_eq)
+            du = base - inv_et @ dy
+            ds = -r_in - c_times(du)
+            dz = (target - slack * dual - dual * ds) / slack
+            return du, dy, ds, dz
+
+        du, dy, ds, dz = direction(np.zeros_like(slack))
+        alpha = min(_step(slack, ds), _step(dual, dz))
+        mu_affine = float((slack + alpha * ds) @ (dual + alpha * dz)) / slack.size
+        sigma = (mu_affine / mu) ** 3
+        du, dy, ds, dz = direction(sigma * mu - ds * dz)
+        alpha = 0.99 * min(_step(slack, ds), _step(dual, dz))
+        u, y = u + alpha * du, y + alpha * dy
+        slack, dual = slack + alpha * ds, dual + alpha * dz
+    r_eq = e_matrix @ u - e_target
+    return QPResult(
+        u=u,
+        iterations=iteration,
+        primal_residual=max(float(np.max(np.abs(r_eq), initial=0.0)),
+                            float(np.max(np.abs(c_times(u) + slack - b)))),
+        dual_residual=float(np.max(np.abs(p @ u + q + e_matrix.T @ y + ct_times(dual)))) / scale,
+        complementarity=float(slack @ dual) / slack.size,
+        converged=converged,
+    )  # fmt: skip

@@ -1,0 +1,110 @@
+"""The constrained linear bound: condensing, the dense interior point, the limits on its optimum."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from loader_model.bound.condensed import condense
+from loader_model.bound.constrained import path_limits, solve_constrained_bound
+from loader_model.bound.linear import evaluate, linear_quadratic, solve_linear_bound
+from loader_model.bound.problem import bound_problem
+from loader_model.plant.scenario import PlantScenario, resolve_plant
+from loader_model.simulation.courses import Course
+from loader_model.simulation.roads import board_course
+from loader_model.simulation.scenario import closed_loop
+from loader_model.simulation.simulator import course_input, simulate
+
+
+@pytest.fixture(scope="module")
+def plant() -> PlantScenario:
+    return resolve_plant(None, "empty")
+
+
+@pytest.fixture(scope="module")
+def road(plant):
+    course = Course(
+        board_course(1, height_m=0.005, width_m=0.14, spacing_m=0.0), 2.5, -0.3, 2.0, ""
+    )
+    return course_input(course, plant)
+
+
+@pytest.fixture(scope="module")
+def problem(plant, road):
+    return bound_problem(plant, road, duration_s=3.0)
+
+
+@pytest.fixture(scope="module")
+def lq(problem):
+    return linear_quadratic(problem)
+
+
+@pytest.fixture(scope="module")
+def bound(problem, lq):
+    return solve_constrained_bound(problem, lq)
+
+
+def test_condensed_cost_and_paths_match_the_recursion(problem, lq):
+    condensed = condense(lq, problem.hold_periods)
+    u = np.random.default_rng(2).normal(size=problem.intervals) * 0.3
+    a_total, end, _ = evaluate(lq, u, problem)
+    assert np.sqrt(condensed.cost(u) / lq.count) == pytest.approx(a_total, rel=1e-9)
+    assert np.allclose(condensed.end_matrix @ u - condensed.end_target, end, atol=1e-9)
+    p_z, p_u, p_offset = lq.path
+    z, direct = np.zeros(lq.a.shape[0]), []
+    for j in range(problem.intervals):
+        direct.append(p_z @ z + p_u * u[j] + p_offset[j])
+        z = lq.a @ z + lq.b * u[j] + lq.d[j]
+    direct = np.array(direct).reshape(condensed.path_offset.shape)
+    values = condensed.path_values(u)
+    scale = np.max(np.abs(direct), axis=(0, 1))
+    assert np.max(np.abs(values - direct) / scale) < 1e-9
+    picked = (np.array([3, 200]), np.array([0, 7]), np.array([0, 3]))
+    rows = condensed.path_rows(*picked) @ u + condensed.path_offset[picked]
+    assert np.allclose(rows, direct[picked], rtol=1e-9, atol=1e-12 * scale.max())
+
+
+def test_constraints_hold_on_the_constrained_optimum(problem, bound):
+    """Every 1 ms sample of the pressures, stroke and rate and every command within its limit,
+    to the stated tolerance (1e-6 of each limit's range); the end condition to 1e-9."""
+    assert bound.converged
+    _, lower, upper, scale = path_limits(problem)
+    static = path_limits(problem)[0]
+    deviation = bound.path - static
+    assert np.all(deviation <= upper + 1e-6 * scale)
+    assert np.all(deviation >= lower - 1e-6 * scale)
+    command = problem.plant.u0 + bound.command
+    limit = problem.u_bounds[1]
+    assert np.all(np.abs(command) <= limit * (1 + 1e-9))
+    assert np.max(np.abs(bound.end_residual)) < 1e-9
+
+
+def test_constrained_bound_between_the_unconstrained_and_the_baseline(plant, road, problem, bound):
+    unconstrained = solve_linear_bound(problem)
+    baseline = simulate(road, closed_loop(plant), duration_s=problem.duration_s)
+    assert unconstrained.a_total_m_s2 <= bound.a_total_m_s2 * (1 + 1e-9)
+    assert bound.a_total_m_s2 < baseline.seat_evaluation().total_m_s2
+
+
+def test_loose_limits_give_the_unconstrained_bound(problem, lq):
+    """With every limit 100 times wider no row binds: a_total equal within 1e-7 (relative)."""
+    static, lower, upper, _ = path_limits(problem)
+    loose = dataclasses.replace(
+        problem,
+        u_bounds=tuple(100.0 * v for v in problem.u_bounds),
+        rate_limit=100.0 * problem.rate_limit,
+        path_lower=static[:3] + 100.0 * lower[:3],
+        path_upper=static[:3] + 100.0 * upper[:3],
+    )
+    unconstrained = solve_linear_bound(loose)
+    constrained = solve_constrained_bound(loose)
+    assert constrained.a_total_m_s2 == pytest.approx(unconstrained.a_total_m_s2, rel=1e-7)
+
+
+def test_bad_options_name_the_argument(problem, lq):
+    with pytest.raises(ValueError, match="tolerance"):
+        solve_constrained_bound(problem, lq, tolerance=0.0)
+    with pytest.raises(ValueError, match="max_rounds"):
+        solve_constrained_bound(problem, lq, max_rounds=0)
