@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
+from loader_model.bound.constrained import ConstrainedBound, solve_constrained_bound
 from loader_model.bound.linear import LinearBound, solve_linear_bound
 from loader_model.bound.problem import BoundProblem
 from loader_model.io.export import write_atomically
@@ -24,7 +25,18 @@ from loader_model.simulation.scenario import Scenario
 from loader_model.simulation.simulator import simulate
 from loader_model.simulation.travel import RoadInput
 
-__all__ = ["BoundComparison", "compare", "format_comparison", "plot_comparison", "write_csv"]
+__all__ = [
+    "BOUND_KINDS",
+    "BoundComparison",
+    "compare",
+    "format_comparison",
+    "plot_comparison",
+    "solve_bound",
+    "write_csv",
+]
+
+#: The bounds :func:`compare` can solve: the LQ bound without limits, and with the pump's.
+BOUND_KINDS = ("linear", "constrained")
 
 
 @dataclass(frozen=True)
@@ -37,10 +49,12 @@ class BoundComparison:
         Course, speed and load.
     a_total : dict
         Controller name -> a_total (Eq. 50) in m/s², the baseline first.
-    bound : LinearBound
+    bound : LinearBound or ConstrainedBound
         The bound (its command deviation from u0 and a_total).
     bound_kind : str
-        Which bound (``"linear"``: the non-causal LQ bound on the linearised plant).
+        Which bound (:data:`BOUND_KINDS`): ``"linear"`` the non-causal LQ bound on the
+        linearised plant, ``"constrained"`` the same with the pump's, pressure and stroke limits
+        (:mod:`~loader_model.bound.constrained`).
     runs : dict
         Controller name -> its simulation result.
     problem : BoundProblem
@@ -49,7 +63,7 @@ class BoundComparison:
 
     title: str
     a_total: dict[str, float]
-    bound: LinearBound
+    bound: LinearBound | ConstrainedBound
     bound_kind: str
     runs: dict[str, SimulationResult] = field(repr=False)
     problem: BoundProblem = field(repr=False)
@@ -65,18 +79,32 @@ class BoundComparison:
         return min(self.a_total, key=self.a_total.__getitem__)
 
 
+def solve_bound(
+    problem: BoundProblem, kind: str = "linear", *, progress: bool = False
+) -> LinearBound | ConstrainedBound:
+    """The bound ``kind`` (:data:`BOUND_KINDS`) of ``problem``."""
+    if kind not in BOUND_KINDS:
+        raise ValueError(f"bound must be one of {', '.join(BOUND_KINDS)}; got {kind!r}")
+    if kind == "linear":
+        return solve_linear_bound(problem)
+    return solve_constrained_bound(problem, progress=progress)
+
+
 def compare(
     problem: BoundProblem,
     road: RoadInput,
     scenarios: dict[str, Scenario],
     *,
     title: str = "",
+    bound: str = "linear",
     progress: bool = False,
 ) -> BoundComparison:
     """Simulate ``scenarios`` (must hold ``"baseline"``) over ``problem``'s horizon, solve the
-    bound and collect a_total (module notes)."""
+    bound of kind ``bound`` (:data:`BOUND_KINDS`) and collect a_total (module notes)."""
     if "baseline" not in scenarios:
         raise ValueError(f"scenarios must hold 'baseline'; got {list(scenarios)}")
+    if bound not in BOUND_KINDS:
+        raise ValueError(f"bound must be one of {', '.join(BOUND_KINDS)}; got {bound!r}")
     from tqdm import tqdm
 
     runs, totals = {}, {}
@@ -87,10 +115,10 @@ def compare(
             runs[name] = simulate(road, scenario, duration_s=problem.duration_s)
             totals[name] = float(runs[name].seat_evaluation().total_m_s2)
             bar.update()
-        bar.set_postfix_str("linear bound")
-        bound = solve_linear_bound(problem)
+        bar.set_postfix_str(f"{bound} bound")
+        solved = solve_bound(problem, bound, progress=progress)
         bar.update()
-    return BoundComparison(title, totals, bound, "linear", runs, problem)
+    return BoundComparison(title, totals, solved, bound, runs, problem)
 
 
 def format_comparison(comparison: BoundComparison) -> str:
@@ -105,10 +133,18 @@ def format_comparison(comparison: BoundComparison) -> str:
         f"{'bound (' + comparison.bound_kind + ')':<22}{bound:>16.4f}"
         f"{100.0 * (bound / baseline - 1.0):>+9.1f}{1.0:>8.2f}"
     )
-    peak = np.max(np.abs(comparison.bound.command)) / comparison.problem.u_bounds[1]
+    problem = comparison.problem
+    peak = np.max(np.abs(problem.plant.u0 + comparison.bound.command)) / problem.u_bounds[1]
+    if comparison.bound_kind == "linear":
+        note = "no limits in the LQ problem"
+    else:
+        note = (
+            f"pump, pressure and stroke limits held to {comparison.bound.max_violation:.1e} "
+            "of each limit"
+        )
     lines.append(
-        f"share = (baseline − controller) / (baseline − bound); the linear bound's command peaks "
-        f"at {peak:.2f} × the pump's limit (no limits in the LQ problem)"
+        f"share = (baseline − controller) / (baseline − bound); the {comparison.bound_kind} "
+        f"bound's command peaks at {peak:.2f} × the pump's limit ({note})"
     )
     return "\n".join(lines)
 

@@ -53,6 +53,33 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="N",
         help="largest number of command values one problem may have (default 6000)",
     )
+    parser.add_argument(
+        "--bound",
+        default="linear",
+        metavar="KIND",
+        help="'linear' (no limits, under a second; default) or 'constrained' (the pump's, "
+        "pressure and stroke limits; minutes on the 15 s course)",
+    )
+    parser.add_argument(
+        "--pump-sizing",
+        action="store_true",
+        help="instead of the comparison: the constrained bound and the refined skyhook against "
+        "the pump's V_p_max, omega_p and Vd_p_max (writes pump_sizing.csv, .png to --output)",
+    )
+    parser.add_argument(
+        "--factors",
+        default=None,
+        metavar="LIST",
+        help="with --pump-sizing: comma-separated scale factors of each pump parameter "
+        "(default 0.5,0.75,1,1.5,2)",
+    )
+    parser.add_argument(
+        "--duration",
+        type=float,
+        default=None,
+        metavar="S",
+        help="horizon in s (default: the whole course)",
+    )
     parser.add_argument("--output", metavar="DIR", default=None, help="write bound.csv, .png")
 
 
@@ -87,6 +114,14 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
         raise ValueError(f"--hold-ms {args.hold_ms}: allowed: 1 to 100")
     if args.max_intervals < 2:
         raise ValueError(f"--max-intervals {args.max_intervals}: allowed: an integer >= 2")
+    from loader_model.bound.comparison import BOUND_KINDS
+
+    if args.bound not in BOUND_KINDS:
+        raise ValueError(f"--bound {args.bound!r}: allowed: {', '.join(BOUND_KINDS)}")
+    if args.duration is not None and not args.duration > 0:
+        raise ValueError(f"--duration {args.duration!r}: allowed: a time > 0 s")
+    if args.pump_sizing:
+        return _pump_sizing(args, written)
     names = _controllers(args.controllers)
     output = None
     if args.output is not None:
@@ -109,14 +144,25 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
     road = course_input(course, plant)
     try:
         problem = bound_problem(
-            plant, road, hold_periods=args.hold_ms, max_intervals=args.max_intervals
+            plant,
+            road,
+            hold_periods=args.hold_ms,
+            duration_s=args.duration,
+            max_intervals=args.max_intervals,
         )
     except ValueError as error:
         raise ValueError(f"--course/--speed/--hold-ms: {error}") from None
     title = f"{course.name}; load {args.load}"
-    comparison = compare(problem, road, scenarios, title=title, progress=True)
+    comparison = compare(problem, road, scenarios, title=title, bound=args.bound, progress=True)
     print(format_comparison(comparison))
-    print(f"linear bound solved in {comparison.bound.solve_s:.2f} s")
+    solved = comparison.bound
+    detail = ""
+    if args.bound == "constrained":
+        detail = (
+            f" ({solved.rounds} rounds, {solved.iterations} interior-point iterations, "
+            f"{len(solved.working_set)} path rows, converged: {solved.converged})"
+        )
+    print(f"{args.bound} bound solved in {solved.solve_s:.2f} s{detail}")
     if output is not None:
         output.mkdir(parents=True, exist_ok=True)
         for path in (write_csv(comparison, output / "bound.csv"),):
@@ -156,3 +202,69 @@ def _scenarios(names: tuple[str, ...], params: str | None, load: str) -> dict:
             settings = with_gains(default_settings(), designed[name], name)
             scenarios[name] = ride_scenario(plant, "skyhook", settings)
     return scenarios
+
+
+def _factors(text: str | None) -> tuple[float, ...]:
+    from loader_model.bound.pump_sizing import DEFAULT_FACTORS
+
+    if text is None:
+        return DEFAULT_FACTORS
+    try:
+        values = tuple(float(v) for v in text.split(",") if v.strip())
+    except ValueError:
+        values = ()
+    if not values or not all(v > 0 for v in values):
+        raise ValueError(f"--factors {text!r}: allowed: comma-separated numbers > 0")
+    return values
+
+
+def _pump_sizing(args: argparse.Namespace, written: list[str]) -> int:
+    """``--pump-sizing``: the constrained bound and the refined skyhook against pump size."""
+    from pathlib import Path
+
+    from loader_model.bound.pump_sizing import plot_pump_sizing, pump_sizing, write_csv
+    from loader_model.experiments.designed_gains import refined_settings
+    from loader_model.plant.scenario import resolve_plant
+    from loader_model.simulation.courses import paper_course
+    from loader_model.simulation.scenario import ride_scenario
+    from loader_model.simulation.simulator import course_input
+
+    factors = _factors(args.factors)
+    if args.output is None:
+        raise ValueError("--output DIR is required with --pump-sizing (pump_sizing.csv, .png)")
+    output = Path(args.output)
+    if output.exists() and not output.is_dir():
+        raise ValueError(f"--output {args.output!r}: not a folder")
+    plant = resolve_plant(args.params, args.load)
+    course = paper_course(args.speed)
+    road = course_input(course, plant)
+    settings = refined_settings()
+    rows = pump_sizing(
+        plant,
+        road,
+        factors=factors,
+        controller=lambda sized: ride_scenario(sized, "skyhook", settings),
+        hold_periods=args.hold_ms,
+        duration_s=args.duration,
+        progress=True,
+    )
+    print(
+        f"{'parameter':<10}{'factor':>8}{'baseline':>10}{'bound':>10}{'refined':>10}{'rounds':>8}"
+    )
+    for row in rows:
+        print(
+            f"{row.parameter:<10}{row.factor:>8.2f}{row.baseline_a_total_m_s2:>10.4f}"
+            f"{row.bound_a_total_m_s2:>10.4f}{row.controller_a_total_m_s2:>10.4f}"
+            f"{row.bound_rounds:>8d}"
+        )
+    output.mkdir(parents=True, exist_ok=True)
+    title = f"{course.name}; load {args.load}: a_total against pump size (one parameter scaled)"
+    for path in (
+        write_csv(rows, output / "pump_sizing.csv"),
+        plot_pump_sizing(
+            rows, output / "pump_sizing.png", title=title, controller="skyhook-refined"
+        ),
+    ):
+        written.append(str(path))
+        print(f"wrote {path}")
+    return 0
