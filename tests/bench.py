@@ -301,6 +301,18 @@ def _bench_bound() -> None:
     for method in ("riccati", "kkt"):
         seconds = _median_seconds(lambda m=method: solve_linear_bound(problem, m), 3)
         _report(f"linear bound, {problem.duration_s:.1f} s course ({method})", seconds, unit="s")
+    # the constrained linear bound (pump, pressure and stroke limits): one run, minutes
+    from loader_model.bound.constrained import solve_constrained_bound
+
+    riccati = _median_seconds(lambda: solve_linear_bound(problem), 1)
+    constrained = solve_constrained_bound(problem)
+    label = f"constrained bound, {problem.duration_s:.1f} s course"
+    _report(label, constrained.solve_s, riccati, unit="s")
+    print(
+        f"{'':<42}{constrained.rounds} rounds, {constrained.iterations} interior-point "
+        f"iterations, {len(constrained.working_set)} path rows, violation "
+        f"{constrained.max_violation:.1e} of the limits (baseline: the Riccati sweep)"
+    )
 
 
 def _bench_simulator() -> None:

@@ -5,6 +5,12 @@
 - :mod:`~loader_model.bound.problem`: grid, road samples, pump, pressure and stroke limits.
 - :mod:`~loader_model.bound.linear`: the non-causal LQ bound on the linearised plant (Riccati
   sweep; a sparse KKT solve as reference).
+- :mod:`~loader_model.bound.condensed`: the LQ problem condensed onto the command values.
+- :mod:`~loader_model.bound.dense_qp`: a dense primal-dual interior point for convex QPs.
+- :mod:`~loader_model.bound.constrained`: the LQ bound with the pump's, pressure and stroke
+  limits (constraint generation over every path sample).
+- :mod:`~loader_model.bound.pump_sizing`: the constrained bound and a controller against pump
+  size.
 - :mod:`~loader_model.bound.nonlinear`: multiple shooting on the simulator's own step, IPOPT.
 - :mod:`~loader_model.bound.replay`: a controller that plays a command table back, and the
   replay through the simulator.

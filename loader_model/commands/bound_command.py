@@ -7,7 +7,12 @@ with Table 3 gains, ``skyhook-lqr`` and ``skyhook-optimised`` designed on the li
 achievable reduction, (baseline − controller) / (baseline − bound). The bound printed is the
 non-causal LQ bound on the linearised plant (the road known in advance, no pump limits:
 :mod:`loader_model.bound.linear`). With ``--output DIR`` writes ``bound.csv`` (the optimal
-command and seat trace beside the best controller's) and ``bound.png``.
+command and seat trace beside the best controller's) and ``bound.png``. ``--bound constrained``
+prints the LQ bound with the pump's, pressure and stroke limits instead
+(:mod:`loader_model.bound.constrained`; minutes on the whole course). ``--pump-sizing`` runs
+the pump-sizing study instead of the comparison (:mod:`loader_model.bound.pump_sizing`: the
+constrained bound and the refined skyhook against V_p_max, ω_p and V̇_p,max, Table 2) and writes
+``pump_sizing.csv`` and ``pump_sizing.png`` to ``--output``.
 """
 
 from __future__ import annotations
