@@ -4,8 +4,10 @@ For each pump parameter of Table 2 (Fig. 9's second-order pump: the maximum disp
 V_p,max, the bandwidth ω_p and the displacement-rate limit V̇_p,max; plant parameter names
 ``V_p_max``, ``omega_p``, ``Vd_p_max``) and each scale factor, the plant is rebuilt with that one
 parameter scaled (:meth:`~loader_model.plant.scenario.PlantScenario.from_vector`, its own
-equilibrium) and three numbers are computed on the same course and horizon: the baseline's
-a_total (Eq. 49, 50; it holds the pump still, so it does not depend on the pump), the
+equilibrium) and these are computed on the same course and horizon: the baseline's a_total
+(Eq. 49, 50; it holds the pump still, so it does not depend on the pump) in the simulator and
+on the linearised plant (the bound's own reference: on the 40 mm boards the linear plant
+misses the nonlinear one's behaviour and reads far higher), the
 constrained linear bound's (:mod:`~loader_model.bound.constrained`, the limits scaled with the
 pump) and, if given, a causal controller's simulated with the scaled pump (the command passes
 the shipped refined skyhook). Each constrained solve starts from the previous one's working set
@@ -23,6 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from loader_model.bound.constrained import solve_constrained_bound
+from loader_model.bound.linear import evaluate, linear_quadratic
 from loader_model.bound.problem import bound_problem
 from loader_model.io.export import write_atomically
 from loader_model.plant.scenario import PlantScenario
@@ -52,12 +55,15 @@ DEFAULT_FACTORS: tuple[float, ...] = (0.5, 0.75, 1.0, 1.5, 2.0)
 
 @dataclass(frozen=True)
 class PumpSizingRow:
-    """One pump size: the parameter scaled, its value and the three a_total (m/s²)."""
+    """One pump size: the parameter scaled, its value and the a_total (m/s²) of the baseline in
+    the simulator and on the linear plant (the bound's own reference), the bound and the
+    controller."""
 
     parameter: str
     factor: float
     value: float
     baseline_a_total_m_s2: float
+    linear_baseline_a_total_m_s2: float
     bound_a_total_m_s2: float
     controller_a_total_m_s2: float
     bound_peak_command_over_limit: float
@@ -117,7 +123,9 @@ def pump_sizing(
                 problem = bound_problem(
                     sized, road, hold_periods=hold_periods, duration_s=base.duration_s
                 )
-                bound = solve_constrained_bound(problem, working_set=working)
+                lq = linear_quadratic(problem)
+                linear_baseline = evaluate(lq, np.zeros(problem.intervals), problem)[0]
+                bound = solve_constrained_bound(problem, lq, working_set=working)
                 working = bound.working_set
                 causal = np.nan
                 if controller is not None:
@@ -126,7 +134,8 @@ def pump_sizing(
                 peak = np.max(np.abs(sized.u0 + bound.command)) / problem.u_bounds[1]
                 rows.append(
                     PumpSizingRow(
-                        name, factor, sized.parameter(name), baseline_a, bound.a_total_m_s2,
+                        name, factor, sized.parameter(name), baseline_a, linear_baseline,
+                        bound.a_total_m_s2,
                         causal, float(peak), bound.max_violation, bound.rounds,
                         bound.converged, bound.solve_s,
                     )
@@ -165,6 +174,8 @@ def plot_pump_sizing(
         factor = np.array([r.factor for r in mine])
         nominal = mine[0].value / mine[0].factor
         panel.plot(factor, [r.baseline_a_total_m_s2 for r in mine], "k--", lw=1, label="baseline")
+        linear = [r.linear_baseline_a_total_m_s2 for r in mine]
+        panel.plot(factor, linear, "k:", lw=1, label="baseline, linear plant")
         panel.plot(factor, [r.bound_a_total_m_s2 for r in mine], "o-", label="constrained bound")
         causal = [r.controller_a_total_m_s2 for r in mine]
         if np.any(np.isfinite(causal)):
