@@ -9,7 +9,8 @@ iteration forms P + diag(D_u) + Gᵀ diag(D_G) G once (the bounds' barrier terms
 factors it by Cholesky and eliminates the equality rows by their small Schur complement. An
 interior point does not mind nearly dependent rows (the active-set difficulty of
 :mod:`~loader_model.bound.constrained`'s notes). Tolerances are relative: the residuals on the
-scaled rows and the complementarity against the scale of the objective.
+scaled rows, the dual residual against the largest entry of q and diag P, and the duality gap
+sᵀλ (which bounds the objective's error) against max(1, |objective|).
 """
 
 from __future__ import annotations
@@ -78,10 +79,12 @@ def solve_dense_qp(
         r_dual = p @ u + q + e_matrix.T @ y + ct_times(dual)
         r_eq = e_matrix @ u - e_target
         r_in = c_times(u) + slack - b
-        mu = float(slack @ dual) / slack.size
+        gap = float(slack @ dual)
+        mu = gap / slack.size
         primal = max(float(np.max(np.abs(r_eq), initial=0.0)), float(np.max(np.abs(r_in))))
         dual_res = float(np.max(np.abs(r_dual))) / scale
-        if primal < tolerance and dual_res < tolerance and mu < tolerance * scale:
+        objective = abs(0.5 * float(u @ p @ u) + float(q @ u))
+        if primal < tolerance and dual_res < tolerance and gap < tolerance * max(1.0, objective):
             converged = True
             break
         ratio = dual / slack

@@ -108,3 +108,33 @@ def test_bad_options_name_the_argument(problem, lq):
         solve_constrained_bound(problem, lq, tolerance=0.0)
     with pytest.raises(ValueError, match="max_rounds"):
         solve_constrained_bound(problem, lq, max_rounds=0)
+
+
+def test_dense_interior_point_matches_qpoases_on_a_small_qp():
+    """A random definite QP with bounds, general rows and one equality: the objective equal to
+    CasADi's qpOASES within 1e-8 (relative; the duality gap's tolerance 1e-9), u within 1e-5."""
+    import casadi as ca
+
+    from loader_model.bound.dense_qp import solve_dense_qp
+
+    rng = np.random.default_rng(3)
+    n, m = 20, 15
+    root = rng.normal(size=(n, n))
+    p, q = root @ root.T + 0.1 * np.eye(n), rng.normal(size=n)
+    g, e = rng.normal(size=(m, n)), rng.normal(size=(1, n))
+    lower, upper = -0.3 * np.ones(m), 0.2 * np.ones(m)
+    ours = solve_dense_qp(p, q, e, np.array([0.1]), g, lower, upper, -0.5, 0.5)
+    a = np.vstack([e, g])
+    qp = {"h": ca.DM(p).sparsity(), "a": ca.DM(a).sparsity()}
+    solver = ca.conic("reference", "qpoases", qp, {"printLevel": "none"})
+    reference = solver(
+        h=p, g=q, a=a, lbx=-0.5, ubx=0.5, lba=np.r_[0.1, lower], uba=np.r_[0.1, upper]
+    )
+    x = np.asarray(reference["x"]).ravel()
+
+    def objective(u: np.ndarray) -> float:
+        return 0.5 * u @ p @ u + q @ u
+
+    assert ours.converged
+    assert objective(ours.u) == pytest.approx(objective(x), rel=1e-8)
+    assert np.allclose(ours.u, x, atol=1e-5)
