@@ -42,6 +42,26 @@ def _step(values: np.ndarray, steps: np.ndarray) -> float:
     return float(min(1.0, np.min(-values[negative] / steps[negative])))
 
 
+def _factor(normal: np.ndarray) -> tuple:
+    """Cholesky factor of the normal matrix; near the end of the iteration the barrier terms of
+    active rows reach 1e16 and round-off can make it indefinite: then the diagonal is raised by
+    1e-14, 1e-12, … of its largest entry until the factorisation succeeds (a Newton step of a
+    slightly regularised system, still a descent direction)."""
+    try:
+        return scipy.linalg.cho_factor(normal)
+    except np.linalg.LinAlgError:
+        pass
+    largest = float(np.max(np.abs(np.diag(normal))))
+    for exponent in range(-14, -5, 2):
+        shifted = normal.copy()
+        shifted[np.diag_indices_from(shifted)] += largest * 10.0**exponent
+        try:
+            return scipy.linalg.cho_factor(shifted)
+        except np.linalg.LinAlgError:
+            continue
+    raise np.linalg.LinAlgError("the QP's normal matrix is not definite even regularised")
+
+
 def solve_dense_qp(
     p: np.ndarray,
     q: np.ndarray,
@@ -90,7 +110,7 @@ def solve_dense_qp(
         ratio = dual / slack
         normal = p + g.T @ ((ratio[:m] + ratio[m : 2 * m])[:, None] * g)
         normal[np.diag_indices(n)] += ratio[2 * m : 2 * m + n] + ratio[2 * m + n :]
-        factor = scipy.linalg.cho_factor(normal)
+        factor = _factor(normal)
         inv_et = scipy.linalg.cho_solve(factor, e_matrix.T)
         schur = e_matrix @ inv_et
 
