@@ -13,15 +13,15 @@ bound by more than ``tolerance`` (relative to the limit) that sample's row joins
 are never removed, so the cost rises monotonically to the constrained optimum; it stops when no
 sample of the K_s periods violates. Its a_total is the pump's bound in the linear regime.
 
-Measured on the development machine (2 shared cores, load about 4) on the paper course,
+Measured on the development machine (2 cores shared with other jobs) on the paper course,
 9 km/h, empty (N = 1530 command values of 10 ms, 15.3 s; the baseline's a_total 4.286 m/s², the
 unconstrained LQ bound's 2.180 with its command at 12.4 × the limit): a_total 3.6331 m/s², the
-command at 1.00 × the limit (0.99 V_p,max), no sample of the 61 200 violating (the largest
-excess −2e-9 of the limits), the end condition to 1e-14; 10 rounds, 173 interior-point
-iterations, 2233 rows in the final set, 133 s. Without dropping rows (all 4398 kept) the same
-a_total to 1e-7 took 265 s. The rows added after the first round are the pressure in A
-(cavitation) and the rate limit. Started from a known working set (``working_set``, e.g. a
-neighbouring pump size) it needs fewer rounds.
+command at 1.00 × the limit (0.99 V_p,max), the largest violation over all 61 200 path samples
+4e-8 of the limits, the end condition to 1e-14; 10 rounds, 200 interior-point iterations, 2244
+rows in the final set, 54 s (133 s in an earlier run under a load of about 4). Without dropping
+rows (all 4398 kept) the same a_total to 1e-7 took 265 s under that load. The rows added after
+the first round are the pressure in A (cavitation) and the rate limit. Started from a known
+working set (``working_set``, e.g. a neighbouring pump size) it needs fewer rounds.
 
 What failed before (the 3 s, 5 mm test course, stage-wise form with the states as variables,
 all 12 000 per-period rows): CasADi's ``conic`` with OSQP stopped at 20 000 iterations after
