@@ -139,8 +139,8 @@ def format_comparison(comparison: BoundComparison) -> str:
         note = "no limits in the LQ problem"
     else:
         note = (
-            f"pump, pressure and stroke limits held to {comparison.bound.max_violation:.1e} "
-            "of each limit"
+            "largest excess over the pump, pressure and stroke limits "
+            f"{comparison.bound.max_violation:.1e} of each limit, negative inside"
         )
     lines.append(
         f"share = (baseline − controller) / (baseline − bound); the {comparison.bound_kind} "
