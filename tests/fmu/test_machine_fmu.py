@@ -158,3 +158,18 @@ def test_wheel_loader_fmu_reproduces_cvodes_on_its_plant_function(tmp_path: Path
     result = cross_check(path, params, machine=MACHINE)
     # the skid-steer's acceptance (issue 15): 1e-3 of each signal's excursion (measured ~6e-6)
     assert max(result.relative_error.values()) < 1e-3, result.relative_error
+
+
+def test_wheel_loader_closed_loop_fmu_takes_a_settings_file(tmp_path: Path) -> None:
+    from loader_model.control.settings import default_settings, save_settings, with_gains
+
+    gains = (1.5, -2.5, 3.5, 0.25)
+    settings = tmp_path / "designed.toml"
+    save_settings(with_gains(default_settings(), gains, "test gains"), settings)
+    target = tmp_path / "designed.fmu"
+    argv = ["export-fmu", "--machine", MACHINE, "--controller", "skyhook", "--no-sources"]
+    assert cli.main([*argv, "--settings", str(settings), str(target)]) == 0
+    md = fmpy.read_model_description(str(target))
+    start = {v.name: v.start for v in md.modelVariables}
+    got = [float(start[f"controller.k_{name}"]) for name in ("x", "y", "theta", "phi")]
+    assert got == list(gains)
