@@ -51,6 +51,14 @@ def _params(gen: ModuleType, **changes: float) -> np.ndarray:
 
 
 def test_structure_of_the_derived_machine(generated: tuple[ModuleType, Path]) -> None:
+    import json
+    import tomllib
+
+    from derive.description import MACHINES_DIR
+
+    jsonschema = pytest.importorskip("jsonschema")
+    schema = json.loads((MACHINES_DIR.parent / "machine.schema.json").read_text(encoding="utf-8"))
+    jsonschema.validate(tomllib.loads(DESCRIPTION), schema)
     gen, _ = generated
     assert gen.COORDINATE_NAMES == ("x_H", "y_H", "theta_1", "theta_2", "s_cab")
     assert gen.ANCHOR_NAMES == ("xi_A", "xi_B", "xi_R")
@@ -183,6 +191,33 @@ def test_undamped_motion_conserves_energy(generated: tuple[ModuleType, Path]) ->
     drift = np.ptp(values) / max(np.abs(values).max(), kinetic0)
     print(f"three-axle cab: energy {values[0]:.4f} J, relative drift {drift:.2e}")
     assert drift < 1e-9
+
+
+def test_linearisation_matches_finite_differences(generated: tuple[ModuleType, Path]) -> None:
+    """A and B of the generated linearisation (linear tyre law) against central differences of
+    the forward dynamics (contact law, every tyre loaded) at a state off the equilibrium."""
+    from tests.numerics import central_difference
+
+    gen, _ = generated
+    params = _params(gen)
+    f_act0 = float(gen.function("complete_parameters")(params)[1])
+    dynamics = gen.function("forward_dynamics")
+    zeros6, zeros3 = np.zeros(6), np.zeros(3)
+
+    def rate(x: np.ndarray, force: float = f_act0) -> np.ndarray:
+        pdd, _ = dynamics(x[:N], x[N:], np.zeros(3), force, zeros6, zeros6, zeros3, params)
+        return np.concatenate([x[N:], np.asarray(pdd).ravel()])
+
+    x0 = 0.1 * np.array([0.002, -0.004, 0.004, -0.006, 0.01, 0.03, 0.02, -0.05, 0.08, -0.1])
+    out = gen.function("linearisation")(x0[:N], x0[N:], f_act0, zeros6, zeros6, zeros3, params)
+    a_mat, b_mat = np.asarray(out[0]), np.asarray(out[1])
+    index = [gen.STATE_NAMES.index(n) for n in (*gen.COORDINATE_NAMES, *gen.RATE_NAMES)]
+    reference = central_difference(rate, x0, np.full(2 * N, 1e-6))
+    scale = max(np.abs(reference).max(), 1.0)
+    np.testing.assert_allclose(a_mat[np.ix_(index, index)], reference, rtol=1e-6, atol=1e-6 * scale)
+    step = 1.0  # N of a 13 kN force
+    b_reference = (rate(x0, f_act0 + step) - rate(x0, f_act0 - step)) / (2 * step)
+    np.testing.assert_allclose(b_mat[index, 0], b_reference, rtol=1e-6, atol=1e-9)
 
 
 def test_runtime_refuses_the_ungenerated_description(generated: tuple[ModuleType, Path]) -> None:
