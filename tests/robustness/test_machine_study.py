@@ -104,3 +104,26 @@ def test_wheel_loader_study_runs_designed_gains(tmp_path: Path) -> None:
     assert by_name["optimised"]["max_pole_real"] < 0.0
     assert by_name["optimised"]["a_total"] > 0.0
     print({n: (round(r["a_total"], 4), round(r["max_pole_real"], 3)) for n, r in by_name.items()})
+
+
+def test_wheel_loader_robust_gains_are_designed_on_its_sampled_plants() -> None:
+    """``robust``: the optimisation over plants drawn from the wheel loader's distributions
+    (its flat file's paths), stable on them; not its nominal design."""
+    from loader_model.control.comfort_design import comfort_plants, evaluate_gain
+    from loader_model.robustness.gains import resolve_gains, robust_gain
+    from loader_model.robustness.machine_study import machine_sample_plant
+
+    text = DESIGNED.replace(
+        'gains = { lqr = "lqr", optimised = "optimised", fixed = [1.0, 2.0, 3.0, 0.5] }',
+        'gains = { robust = "robust", optimised = "optimised" }\nrobust_plants = 2',
+    )
+    study = parse_study(text)
+    gains = resolve_gains(study)
+    gain, specs = robust_gain(study)
+    assert gains["robust"]["full"] == gain
+    assert not np.allclose(gain, gains["optimised"]["full"], rtol=1e-6)
+    for spec in specs:
+        plant = machine_sample_plant(spec, MACHINE)
+        speed = spec.speed_kmh * spec.speed_factor
+        (design,) = comfort_plants((spec.load,), study.road_class, speed, {spec.load: plant})
+        assert evaluate_gain([design], np.asarray(gain))[0].margin > 0.0
