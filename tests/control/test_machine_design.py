@@ -50,3 +50,17 @@ def test_wheel_loader_comfort_plant_and_table3_gain() -> None:
     plants = comfort_plants(("empty", "full"), params=params)
     evaluations = evaluate_gain(plants, (2.75, 5.1, -4.0, 0.22))
     assert all(np.isfinite(e.a_total) and 0.5 < e.a_total < 10.0 for e in evaluations)
+
+
+def test_design_refine_for_another_machine_is_refused_before_any_work(tmp_path, capsys) -> None:
+    """The course refinement drives the skid-steer's trial plants; for another machine the command
+    says so and names the methods that work, writing nothing."""
+    from loader_model import cli
+
+    target = tmp_path / "gains.toml"
+    argv = ["design", "--machine", "compact_wheel_loader", "--method", "refine"]
+    assert cli.main([*argv, "--output", str(target)]) == 2
+    message = capsys.readouterr().err
+    assert "--method refine with --machine compact_wheel_loader" in message
+    assert "lqr or optimise" in message
+    assert not target.exists()
