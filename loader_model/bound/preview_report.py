@@ -201,7 +201,7 @@ def plot_sweep(sweep: PreviewSweep, path: str | Path) -> Path:
         axes.axhline(
             value, color="grey", ls=next(styles, "--"), lw=1.0, label=f"{name} (simulated)"
         )
-    axes.set_xlabel("preview length L ahead of the front axle [m]")
+    axes.set_xlabel("preview length L ahead of the front axle [m] (rear axle: L + wheelbase)")
     axes.set_ylabel("a_total [m/s²]")
     axes.set_title(sweep.title, fontsize=10)
     axes.legend(fontsize=8)

@@ -121,7 +121,7 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
             totals[name] = float(run.seat_evaluation().total_m_s2)
             bar.update()
     sweep = PreviewSweep(
-        title=f"{course.name}; load {args.load}; rear axle previewed L + wheelbase",
+        title=f"{course.name}; load {args.load}",
         preview_m=np.array(lengths),
         linear=np.array(linear),
         simulated=np.array(simulated) if simulated else np.full(len(lengths), np.nan),
