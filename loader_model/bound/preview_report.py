@@ -9,7 +9,8 @@ the node. It closes the loop on the deviation from that design trajectory, which
 lifted model δz_{j+1} = A δz_j + B δu_j, δy_j = C δz_j: a steady-state Kalman filter (current
 estimator, gain L) reconstructs δz from δy = y − y*_j and the law adds δu_j = −K δẑ_j. On the linear
 plant δz = 0 and the controller is the design; on the machine it corrects what the linear model
-misses. The command is held over the M periods of each interval (the design's grid).
+misses. The command is clipped to ±0.99 V_p,max (the bound problem's limit) and held over the M
+periods of each interval (the design's grid).
 """
 
 from __future__ import annotations
@@ -27,7 +28,10 @@ from loader_model.bound.problem import BoundProblem
 from loader_model.io.export import write_atomically
 from loader_model.plant.linear import linearise_plant
 from loader_model.plant.plant import OUTPUT_NAMES
+from loader_model.simulation.result import SimulationResult
 from loader_model.simulation.scenario import Scenario, closed_loop
+from loader_model.simulation.simulator import simulate
+from loader_model.simulation.travel import RoadInput
 
 __all__ = [
     "MEASURED",
@@ -35,6 +39,7 @@ __all__ = [
     "plot_sweep",
     "preview_controller",
     "preview_scenario",
+    "simulate_preview",
     "write_csv",
 ]
 
@@ -50,14 +55,16 @@ MEASURED: tuple[str, ...] = (
 def preview_controller(count: int, states: int) -> ca.Function:
     """The controller ``(z, y, settings) -> (z_next, u)`` (module notes) for ``count`` command
     intervals and ``states`` lifted states; z = (k, u held, δẑ), settings = (M, u*_j with y*_j
-    per interval, K, L, A, B (matrices column-major), output scales, command scale)."""
+    per interval, K, L, A, B (matrices column-major), output scales, command scale, command
+    limit). The command is clipped to the pump's limit and the estimator is given the clipped
+    deviation (so a saturating pump does not wind the estimate up)."""
     ny, nz = len(MEASURED), states
     z = ca.SX.sym("z", 2 + nz)
     y = ca.SX.sym("y", len(OUTPUT_NAMES))
-    sizes = [1, count * (1 + ny), nz, nz * ny, nz * nz, nz, ny, 1]
+    sizes = [1, count * (1 + ny), nz, nz * ny, nz * nz, nz, ny, 1, 1]
     settings = ca.SX.sym("settings", sum(sizes))
     parts = ca.vertsplit(settings, list(np.cumsum([0, *sizes])))
-    hold, table, k_gain, l_gain, a, b, y_scale, u_scale = parts
+    hold, table, k_gain, l_gain, a, b, y_scale, u_scale, limit = parts
     rows = [table[i * (1 + ny) : (i + 1) * (1 + ny)] for i in range(count)]
     index = ca.floor((z[0] + 0.5) / hold)
     row = rows[-1]
@@ -66,10 +73,11 @@ def preview_controller(count: int, states: int) -> ca.Function:
     measured = ca.vertcat(*(y[OUTPUT_NAMES.index(name)] for name in MEASURED))
     innovation = (measured - row[1:]) / y_scale
     estimate = z[2:] + ca.reshape(l_gain, nz, ny) @ innovation
-    correction = -ca.dot(k_gain, estimate)
-    predicted = ca.reshape(a, nz, nz) @ estimate + b * correction
+    command = ca.fmin(ca.fmax(row[0] - u_scale * ca.dot(k_gain, estimate), -limit), limit)
+    applied = (command - row[0]) / u_scale  # the deviation the pump is given, clipped
+    predicted = ca.reshape(a, nz, nz) @ estimate + b * applied
     node = ca.fmod(z[0] + 0.5, hold) < 1.0
-    u = ca.if_else(node, row[0] + u_scale * correction, z[1])
+    u = ca.if_else(node, command, z[1])
     z_next = ca.vertcat(z[0] + 1.0, u, ca.if_else(node, predicted, z[2:]))
     return ca.Function(
         f"preview_{count}_{nz}", [z, y, settings], [z_next, u], ["z", "y", "settings"],
@@ -114,10 +122,23 @@ def preview_scenario(
     table = np.column_stack([plant.u0 + run.command, y_star])
     settings = np.concatenate(
         [[problem.hold_periods], table.ravel(), design.gain, gain.ravel("F"), lq.a.ravel("F"),
-         lq.b, scale, [lq.u_scale]]
+         lq.b, scale, [lq.u_scale, problem.u_bounds[1]]]
     )  # fmt: skip
     controller = preview_controller(run.command.size, nz)
     return closed_loop(plant, controller, settings, np.concatenate([[0.0, plant.u0], np.zeros(nz)]))
+
+
+def simulate_preview(
+    design: PreviewDesign, problem: BoundProblem, run: PreviewRun, road: RoadInput
+) -> SimulationResult:
+    """Simulate the preview controller of ``run`` over ``road`` for ``problem``'s horizon.
+
+    Runs the period Function in CasADi's virtual machine (``jit=False``): the course table makes
+    its graph long (about 14 nodes per command interval), so compiling it to C takes minutes
+    (7 min for a 3 s course on the development machine) where interpreting it takes seconds.
+    """
+    scenario = preview_scenario(design, problem, run)
+    return simulate(road, scenario, duration_s=problem.duration_s, jit=False)
 
 
 @dataclass(frozen=True)
@@ -138,6 +159,8 @@ class PreviewSweep:
         Peak |command deviation| of the design over the pump's limit.
     bound_m_s2 : float
         The non-causal LQ bound on the linear plant.
+    lqr_m_s2 : float
+        The plain LQR (no preview, not even the wheelbase's) on the linear plant.
     references : dict
         Controller name -> a_total in the simulation (baseline, best causal controller), m/s².
     """
@@ -148,6 +171,7 @@ class PreviewSweep:
     simulated: np.ndarray
     peak_command: np.ndarray
     bound_m_s2: float
+    lqr_m_s2: float
     references: dict[str, float]
 
     def format(self) -> str:
@@ -161,6 +185,7 @@ class PreviewSweep:
         ):
             lines.append(f"{values[0]:>7.2f}{values[1]:>15.4f}{values[2]:>11.4f}{values[3]:>12.2f}")
         lines.append(f"{'non-causal LQ bound (linear plant)':<36}{self.bound_m_s2:.4f}")
+        lines.append(f"{'plain LQR, no preview (linear plant)':<36}{self.lqr_m_s2:.4f}")
         lines.extend(
             f"{name + ' (simulated)':<36}{value:.4f}" for name, value in self.references.items()
         )
@@ -173,11 +198,12 @@ def write_csv(sweep: PreviewSweep, path: str | Path) -> Path:
     def write(temporary: Path) -> None:
         table = np.column_stack(
             [sweep.preview_m, sweep.linear, sweep.simulated, sweep.peak_command,
-             np.full(sweep.preview_m.size, sweep.bound_m_s2)]
+             np.full(sweep.preview_m.size, sweep.bound_m_s2),
+             np.full(sweep.preview_m.size, sweep.lqr_m_s2)]
         )  # fmt: skip
         header = (
             "preview [m],a_total linear [m/s^2],a_total simulated [m/s^2],"
-            "peak command/limit,bound [m/s^2]"
+            "peak command/limit,bound [m/s^2],plain LQR [m/s^2]"
         )
         np.savetxt(temporary, table, delimiter=",", header=header, comments="", fmt="%.9g")
 
@@ -196,6 +222,7 @@ def plot_sweep(sweep: PreviewSweep, path: str | Path) -> Path:
     if np.any(np.isfinite(sweep.simulated)):
         axes.plot(sweep.preview_m, sweep.simulated, "s--", label="preview LQ, 1 kHz simulation")
     axes.axhline(sweep.bound_m_s2, color="k", lw=1.0, label="non-causal LQ bound (linear plant)")
+    axes.axhline(sweep.lqr_m_s2, color="C1", lw=1.0, label="plain LQR, no preview (linear plant)")
     styles = iter(("--", ":", "-."))
     for name, value in sweep.references.items():
         axes.axhline(

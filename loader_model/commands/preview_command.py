@@ -71,7 +71,7 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
     from loader_model.bound.preview_report import (
         PreviewSweep,
         plot_sweep,
-        preview_scenario,
+        simulate_preview,
         write_csv,
     )
     from loader_model.bound.problem import bound_problem
@@ -81,6 +81,7 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
     from loader_model.simulation.courses import paper_course
     from loader_model.simulation.scenario import ride_scenario
     from loader_model.simulation.simulator import course_input, simulate
+    from loader_model.simulation.validity_check import SimulationError
 
     plant = resolve_plant(args.params, args.load, PlantOptions())
     course = paper_course(args.speed)
@@ -102,6 +103,10 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
         design = preview_design(problem)
         bar.update()
         bound = solve_linear_bound(problem).a_total_m_s2
+        plain = preview_intervals(
+            problem, 0.0, road.speed_m_s, road.wheelbase_m, wheelbase_preview=False
+        )
+        lqr = evaluate_preview(design, problem, plain).a_total_m_s2
         bar.update()
         for length in lengths:
             bar.set_postfix_str(f"L = {length:g} m")
@@ -111,9 +116,12 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
             peaks.append(float(np.max(np.abs(result.command))) / problem.u_bounds[1])
             bar.update()
             if args.simulate:
-                scenario = preview_scenario(design, problem, result)
-                run = simulate(road, scenario, duration_s=problem.duration_s)
-                simulated.append(float(run.seat_evaluation().total_m_s2))
+                try:
+                    run = simulate_preview(design, problem, result, road)
+                    simulated.append(float(run.seat_evaluation().total_m_s2))
+                except SimulationError as error:
+                    bar.write(f"L = {length:g} m: the simulation failed ({error}); reported as NaN")
+                    simulated.append(float("nan"))
                 bar.update()
         for name, scenario in references.items():
             bar.set_postfix_str(name)
@@ -127,6 +135,7 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
         simulated=np.array(simulated) if simulated else np.full(len(lengths), np.nan),
         peak_command=np.array(peaks),
         bound_m_s2=bound,
+        lqr_m_s2=lqr,
         references=totals,
     )
     print(sweep.format())

@@ -89,17 +89,15 @@ def test_a_total_falls_to_the_bound_as_the_preview_grows(design, problem, road):
     assert plain.a_total_m_s2 > totals[0]  # the wheelbase preview already pays
 
 
-@pytest.mark.slow
 def test_simulated_controller_follows_the_linear_prediction(design, problem, road):
     """On 1 mm boards (the command within the pump's limits) with 2 m preview, the 1 kHz
     controller on the nonlinear plant reads a_total within 3 % of the linear prediction (0.6 %
-    measured; about 3 minutes, most of it compiling the 300-row course table to C)."""
-    from loader_model.bound.preview_report import preview_scenario
-    from loader_model.simulation.simulator import simulate
+    measured)."""
+    from loader_model.bound.preview_report import simulate_preview
 
     run = evaluate_preview(design, problem, _intervals(problem, road, 2.0), 2.0)
     assert np.max(np.abs(run.command)) < problem.u_bounds[1]
-    result = simulate(road, preview_scenario(design, problem, run), duration_s=problem.duration_s)
+    result = simulate_preview(design, problem, run, road)
     simulated = float(result.seat_evaluation().total_m_s2)
     assert simulated == pytest.approx(run.a_total_m_s2, rel=0.03)
 
