@@ -184,10 +184,10 @@ class PreviewSweep:
             self.preview_m, self.linear, self.simulated, self.peak_command, strict=True
         ):
             lines.append(f"{values[0]:>7.2f}{values[1]:>15.4f}{values[2]:>11.4f}{values[3]:>12.2f}")
-        lines.append(f"{'non-causal LQ bound (linear plant)':<36}{self.bound_m_s2:.4f}")
-        lines.append(f"{'plain LQR, no preview (linear plant)':<36}{self.lqr_m_s2:.4f}")
+        lines.append(f"{'non-causal LQ bound (linear plant)':<38}{self.bound_m_s2:.4f}")
+        lines.append(f"{'plain LQR, no preview (linear plant)':<38}{self.lqr_m_s2:.4f}")
         lines.extend(
-            f"{name + ' (simulated)':<36}{value:.4f}" for name, value in self.references.items()
+            f"{name + ' (simulated)':<38}{value:.4f}" for name, value in self.references.items()
         )
         return "\n".join(lines)
 
@@ -222,8 +222,10 @@ def plot_sweep(sweep: PreviewSweep, path: str | Path) -> Path:
     if np.any(np.isfinite(sweep.simulated)):
         axes.plot(sweep.preview_m, sweep.simulated, "s--", label="preview LQ, 1 kHz simulation")
     axes.axhline(sweep.bound_m_s2, color="k", lw=1.0, label="non-causal LQ bound (linear plant)")
-    axes.axhline(sweep.lqr_m_s2, color="C1", lw=1.0, label="plain LQR, no preview (linear plant)")
-    styles = iter(("--", ":", "-."))
+    axes.axhline(
+        sweep.lqr_m_s2, color="C2", ls="-.", lw=1.0, label="plain LQR, no preview (linear plant)"
+    )
+    styles = iter(("--", ":", (0, (1, 3))))
     for name, value in sweep.references.items():
         axes.axhline(
             value, color="grey", ls=next(styles, "--"), lw=1.0, label=f"{name} (simulated)"

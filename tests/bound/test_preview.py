@@ -121,3 +121,23 @@ def test_command_rejects_a_bad_preview_list(capsys):
 
     assert main(["preview", "--preview", "1,x"]) != 0
     assert "--preview" in capsys.readouterr().err
+
+
+def test_sweep_writes_its_csv_and_figure(tmp_path):
+    from loader_model.bound.preview_report import PreviewSweep, plot_sweep, write_csv
+
+    sweep = PreviewSweep(
+        title="test",
+        preview_m=np.array([0.0, 1.0]),
+        linear=np.array([3.0, 2.2]),
+        simulated=np.array([np.nan, 2.3]),
+        peak_command=np.array([6.0, 1.9]),
+        bound_m_s2=2.18,
+        lqr_m_s2=4.7,
+        references={"baseline": 4.3},
+    )
+    assert "plain LQR" in sweep.format()
+    table = np.loadtxt(write_csv(sweep, tmp_path / "preview.csv"), delimiter=",", skiprows=1)
+    np.testing.assert_allclose(table[:, 1], sweep.linear)
+    assert plot_sweep(sweep, tmp_path / "preview.png").stat().st_size > 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["preview.csv", "preview.png"]
