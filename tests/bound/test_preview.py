@@ -141,3 +141,20 @@ def test_sweep_writes_its_csv_and_figure(tmp_path):
     np.testing.assert_allclose(table[:, 1], sweep.linear)
     assert plot_sweep(sweep, tmp_path / "preview.png").stat().st_size > 0
     assert sorted(p.name for p in tmp_path.iterdir()) == ["preview.csv", "preview.png"]
+
+
+@pytest.mark.slow
+def test_paper_course_approaches_the_bound(plant):
+    """Paper course, 9 km/h, empty: a_total(L) non-increasing over 0 … 4 m and within 0.5 % of
+    the non-causal LQ bound at 4 m (0.27 % measured; the drift weight is the rest)."""
+    from loader_model.simulation.courses import paper_course
+
+    road = course_input(paper_course(9.0), plant)
+    problem = bound_problem(plant, road)
+    design = preview_design(problem)
+    totals = [
+        evaluate_preview(design, problem, _intervals(problem, road, length)).a_total_m_s2
+        for length in LENGTHS_M
+    ]
+    assert all(b <= a * (1 + 1e-4) for a, b in itertools.pairwise(totals))
+    assert totals[-1] == pytest.approx(solve_linear_bound(problem).a_total_m_s2, rel=0.005)
