@@ -59,13 +59,23 @@ def test_road_terms_of_the_two_axles_sum_to_the_bounds(design):
 
 def test_zero_preview_is_the_plain_lqr(design, problem, road):
     """No preview and no wheelbase preview: u = −K z, K python-control's ``dlqr`` on the same
-    (A, B, Q + Q_drift, R, S)."""
+    (A, B, Q + Q_drift, R, S) and the Riccati recursion iterated to its fixed point."""
     control = pytest.importorskip("control")
     lq = design.lq
     k_ref, _, _ = control.dlqr(
         lq.a, lq.b[:, None], design.state_weight, np.array([[lq.r]]), lq.s[:, None]
     )
     np.testing.assert_allclose(design.gain, np.ravel(k_ref), rtol=1e-6)
+    # python-control solves with scipy here (no slycot): also iterate the Riccati recursion
+    b, q, r, s = lq.b[:, None], design.state_weight, lq.r, lq.s[:, None]
+    p = q.copy()
+    for _ in range(20000):
+        k = np.linalg.solve(r + b.T @ p @ b, b.T @ p @ lq.a + s.T)
+        p_next = q + lq.a.T @ p @ lq.a - (lq.a.T @ p @ b + s) @ k
+        if np.max(np.abs(p_next - p)) <= 1e-12 * np.max(np.abs(p)):
+            break
+        p = 0.5 * (p_next + p_next.T)
+    np.testing.assert_allclose(design.gain, np.ravel(k), rtol=1e-5)
     run = evaluate_preview(design, problem, _intervals(problem, road, 0.0, False))
     assert run.intervals == (0, 0)
     z = np.zeros(lq.a.shape[0])
