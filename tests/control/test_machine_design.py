@@ -45,6 +45,19 @@ def test_scaled_norms_give_the_same_control_law() -> None:
         assert abs(u_scaled - u_raw) <= 1e-9 * abs(u_raw)
 
 
+def test_scaling_leaves_the_callers_gains_as_given() -> None:
+    """The scaled settings are a new object; the gains handed in (an array, as the designs and
+    the course refinement hold them) keep their values."""
+    gain = np.array([10.5, -54.4, 211.4, 39.0])
+    kept = gain.copy()
+    scaled = with_scaled_gains(default_settings(), gain, "test")
+    np.testing.assert_array_equal(gain, kept)
+    assert max(abs(k) for k in scaled.k_fb) <= 50.0 + 1e-12
+    again = with_scaled_gains(default_settings(), gain, "test")  # the same settings twice
+    assert again.k_fb == scaled.k_fb
+    assert again.angular_acceleration_norm == scaled.angular_acceleration_norm
+
+
 def test_wheel_loader_comfort_plant_and_table3_gain() -> None:
     params = {load: resolve_plant(None, load, machine=MACHINE) for load in ("empty", "full")}
     plants = comfort_plants(("empty", "full"), params=params)
