@@ -46,6 +46,8 @@ __all__ = ["course_cost", "refine_on_course"]
 
 #: The name the refined gains' settings carry while they are driven.
 _SOURCE = "skyhook-optimised"
+#: Another machine's shipped plant per (machine, load), resolved once per process.
+_SHIPPED: dict[tuple[str, str], PlantScenario] = {}
 
 
 def _settings(k_fb: np.ndarray, machine: str) -> ControllerSettings:
@@ -91,7 +93,10 @@ def _plant(load: str, machine: str, given: np.ndarray | PlantScenario | None) ->
         from loader_model.experiments.trials import plant_scenario
 
         return plant_scenario(load, _SOURCE)
-    return resolve_plant(None, load, PlantOptions.for_controller("skyhook"), machine=machine)
+    if (machine, load) not in _SHIPPED:
+        options = PlantOptions.for_controller("skyhook")
+        _SHIPPED[machine, load] = resolve_plant(None, load, options, machine=machine)
+    return _SHIPPED[machine, load]
 
 
 def _drive(
