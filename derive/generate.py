@@ -203,13 +203,13 @@ def _render_files(machine: str) -> dict[str, str]:
     )
     function_names = tuple([spec.name for spec in specs] + ["linearisation"])
     description = ""
-    if machine != DEFAULT_MACHINE:
+    if sym.machine.name != DEFAULT_MACHINE:
         from derive.input_hash import description_hash
 
         description = f'\nDESCRIPTION_HASH = "{description_hash(machine)}"'
     files["__init__.py"] = header.format(ops=0) + INDEX.format(
         title=sym.machine.title,
-        package=package_name(machine),
+        package=package_name(sym.machine.name),
         input_hash=digest,
         description_hash=description,
         sympy_version=SYMPY_VERSION,
@@ -236,7 +236,8 @@ def _format(directory: Path) -> None:
 
 
 def generate(output_dir: Path, machine: str = DEFAULT_MACHINE) -> list[str]:
-    """Derive ``machine`` and write its generated files into ``output_dir``.
+    """Derive ``machine`` (a name in ``derive/machines`` or a description's ``.toml`` path) and
+    write its generated files into ``output_dir``.
 
     The folder's files are replaced as a whole (a stale file from an earlier derivation does not
     survive), and only once every file has been rendered and formatted, so a failed run leaves it

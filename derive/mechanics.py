@@ -195,20 +195,30 @@ def _static_loads(
 
     At rest with no road input, K(0) + K_e(0) = Q_act(0) F_act0 + Q_g(0). The x row holds
     identically (no horizontal preload); the other rows are linear in the unknowns (two axles:
-    statically determinate).
+    statically determinate). Three or more axles are statically indeterminate; the compatibility
+    condition is that of a rigid chassis set down on a level road with every tyre just touching
+    it: the static tyre deflections F_iy0 / k_iy are linear in the axle's x, a + b x_i, so the
+    unknowns are a and b instead of the loads.
     """
     machine = sym.machine
-    if len(machine.axles) != 2:
-        raise NotImplementedError(
-            f"{machine.name}: static loads of {len(machine.axles)} axles are statically "
-            "indeterminate (needs a compatibility condition); only two axles are derived so far"
-        )
     at_rest = {symbol: 0 for symbol in (*sym.coordinates, *sym.road)}
     f_act0 = sp.Symbol("F_act0", real=True)
     balance = (springs - actuator_map * f_act0 - gravity).subs(at_rest)
-    unknowns = [P(f"F_{axle}y0") for axle in machine.axles]
-    unknowns += [f_act0] + [P(f"F_{element}0") for element in machine.elements]
-    solution = sp.solve(list(balance[1:, 0]), unknowns, dict=True)[0]
+    loads = [P(f"F_{axle}y0") for axle in machine.axles]
+    preloads = [P(f"F_{element}0") for element in machine.elements]
+    if len(machine.axles) == 2:
+        unknowns = [*loads, f_act0, *preloads]
+        solution = sp.solve(list(balance[1:, 0]), unknowns, dict=True)[0]
+    else:
+        level, slope = sp.symbols("delta_0 delta_slope", real=True)
+        compatible = {
+            load: P(f"k_{axle}y") * (level + slope * P(f"{axle}_x"))
+            for load, axle in zip(loads, machine.axles, strict=True)
+        }
+        balance = balance.subs(compatible)
+        found = sp.solve(list(balance[1:, 0]), [level, slope, f_act0, *preloads], dict=True)[0]
+        solution = {load: compatible[load].subs(found) for load in loads} | found
+        unknowns = [*loads, f_act0, *preloads]
     if sp.simplify(balance[0, 0]) != 0:
         raise RuntimeError("horizontal static balance does not hold identically")
     return {str(name): sp.simplify(solution[name]) for name in unknowns}

@@ -27,6 +27,7 @@ COMMANDS: dict[str, str] = {
     "robustness": "loader_model.commands.robustness_command",
     "bound": "loader_model.commands.bound_command",
     "fidelity": "loader_model.commands.fidelity_command",
+    "preview": "loader_model.commands.preview_command",
 }
 
 

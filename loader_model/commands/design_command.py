@@ -16,7 +16,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="NAME|FILE",
         default="skid_steer",
         help="a generated machine (skid_steer, compact_wheel_loader, ...) or its description "
-        "file; default: skid_steer (lqr and optimise for every machine, refine for the skid-steer)",
+        "file; default: skid_steer (every method for every machine)",
     )
     parser.add_argument(
         "--params",
@@ -78,14 +78,14 @@ def _row(label: str, gain, evaluations) -> str:
     return f"  {label:<22} [{gains}]  a_total {costs}  Σa² {total:.4f}"
 
 
-def _refine(args: argparse.Namespace, start, loads, params):
+def _refine(args: argparse.Namespace, start, loads, params, machine: str):
     """Refine ``start`` on the nonlinear paper course and print the course a_total before/after."""
     from loader_model.experiments.course_refinement import course_cost, refine_on_course
 
     print(f"Refining on the nonlinear paper course at {args.speed:g} km/h ({', '.join(loads)}):")
     from loader_model.control.comfort_design import TABLE3_GAIN
 
-    table3 = course_cost(tuple(TABLE3_GAIN.ravel()), loads, args.speed, params)
+    table3 = course_cost(tuple(TABLE3_GAIN.ravel()), loads, args.speed, params, machine=machine)
     result = refine_on_course(
         start,
         loads=loads,
@@ -93,6 +93,7 @@ def _refine(args: argparse.Namespace, start, loads, params):
         margin=args.margin,
         params=params,
         max_evaluations=args.evaluations,
+        machine=machine,
     )
     for name, totals in (
         ("Table 3", table3),
@@ -144,11 +145,6 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
     from loader_model.machines import resolve_machine_name
 
     machine = resolve_machine_name(getattr(args, "machine", "skid_steer"))
-    if machine != "skid_steer" and args.method == "refine":
-        raise ValueError(
-            f"--method refine with --machine {machine}: allowed: lqr or optimise (the course "
-            "refinement runs the skid-steer's Table 6 trials)"
-        )
     from loader_model.control.comfort_design import (
         TABLE3_GAIN,
         TABLE3_PRINTED_GAIN,
@@ -198,7 +194,7 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
         print(_row(name, gain, evaluate_gain(every, gain)))
     print(f"  {label}: {note}")
     if args.method == "refine":
-        designed, course_note = _refine(args, designed, loads, params)
+        designed, course_note = _refine(args, designed, loads, params, machine)
         label = "refined on the course"
     final = designed if designed is not None else next(iter(lqr.values()))
     print(

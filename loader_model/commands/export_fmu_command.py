@@ -7,16 +7,22 @@ states start at the static equilibrium. ``--controller`` closes the loop inside 
 of the project's discrete 1 kHz controllers, kept discrete and sampled by FMI time events (not a
 continuous equivalent; see :mod:`loader_model.fmu.closed_loop`): the pump command is then an
 output and the controller's settings (Table 3, the shipped defaults) are FMU parameters.
-``--machine`` exports another described machine's plant (``--controller none`` only), with the
-names and sizes of its plant layout.
+``--machine`` exports another described machine with the names and sizes of its plant layout;
+its controllers read the same named sensors, with ‖p_A‖∞ of
+:func:`~loader_model.plant.machine_parameters.pressure_norm` (1.5 × the load's static piston
+pressure), and ``--settings`` gives a designed settings file (``design --output``).
 """
 
 from __future__ import annotations
 
 import argparse
 import time
+from typing import TYPE_CHECKING
 
 from loader_model.commands.common import add_model_arguments, machine_from_arguments
+
+if TYPE_CHECKING:
+    from loader_model.control.settings import ControllerSettings
 
 HELP = "export the nonlinear plant as an FMI 2.0 Model Exchange FMU"
 
@@ -30,14 +36,20 @@ CONTROLLER_CHOICES = {
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add ``--machine``, ``--params``, ``--load``, ``--controller``, ``--no-sources`` and
-    ``OUTPUT.fmu``."""
+    """Add ``--machine``, ``--params``, ``--load``, ``--controller``, ``--settings``,
+    ``--no-sources`` and ``OUTPUT.fmu``."""
     add_model_arguments(parser, machine=True)
     parser.add_argument(
         "--controller",
         choices=list(CONTROLLER_CHOICES),
         default="none",
         help="close the loop inside the FMU with this 1 kHz controller (default: none, the plant)",
+    )
+    parser.add_argument(
+        "--settings",
+        metavar="FILE.toml",
+        default=None,
+        help="controller settings file (default: the shipped Table 3 settings)",
     )
     parser.add_argument(
         "--no-sources",
@@ -54,6 +66,11 @@ def run(args: argparse.Namespace) -> int:
 
     check_output_path(args.output, (".fmu",), "FMU")  # before any work
     find_compiler()  # a clear error before the parameter files are read
+    if args.settings is not None and CONTROLLER_CHOICES[args.controller] in (None, "baseline"):
+        raise ValueError(
+            f"--settings {args.settings}: --controller {args.controller} reads no settings "
+            "(give --controller skyhook or virtual-accumulator)"
+        )
     info = machine_from_arguments(args)
     if not info.is_default:
         return _run_machine(args, info.name)
@@ -65,11 +82,9 @@ def run(args: argparse.Namespace) -> int:
     controller = CONTROLLER_CHOICES[args.controller]
     settings = None
     if controller is not None:
-        from loader_model.control.settings import default_settings, settings_vector_for_plant
+        from loader_model.control.settings import settings_vector_for_plant
 
-        settings = settings_vector_for_plant(
-            default_settings(), params, load.pressure_normalisation
-        )
+        settings = settings_vector_for_plant(_settings(args), params, load.pressure_normalisation)
     started = time.perf_counter()
     path = export_plant_fmu(
         args.output,
@@ -88,25 +103,46 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+def _settings(args: argparse.Namespace) -> ControllerSettings:
+    """The ``--settings`` file, else the shipped Table 3 settings."""
+    from loader_model.control.settings import default_settings, load_settings
+
+    return default_settings() if args.settings is None else load_settings(args.settings)
+
+
 def _run_machine(args: argparse.Namespace, machine: str) -> int:
-    """The plant FMU of another described machine (its flat parameter file and load case)."""
+    """The FMU of another described machine (its flat parameter file and load case)."""
     from loader_model.fmu.build import export_plant_fmu
     from loader_model.plant.scenario import resolve_plant
 
-    if args.controller != "none":
-        raise ValueError(
-            f"--controller {args.controller}: a closed-loop FMU is built for the skid-steer "
-            f"only; export {machine!r} with --controller none"
+    controller = CONTROLLER_CHOICES[args.controller]
+    plant = resolve_plant(args.params, args.load, machine=machine)
+    settings = None
+    if controller is not None:
+        from loader_model.control.settings import settings_vector_for_plant
+        from loader_model.plant.machine_parameters import pressure_norm
+
+        settings = settings_vector_for_plant(
+            _settings(args),
+            plant.params,
+            pressure_norm(plant.output("p_A")),
+            hold_command=plant.u0,
+            machine=machine,
         )
-    params = resolve_plant(args.params, args.load, machine=machine).params
     started = time.perf_counter()
     path = export_plant_fmu(
-        args.output, params, include_sources=not args.no_sources, machine=machine
+        args.output,
+        plant.params,
+        controller=controller,
+        settings=settings,
+        include_sources=not args.no_sources,
+        machine=machine,
     )
     seconds = time.perf_counter() - started
     size_kb = path.stat().st_size / 1024
+    what = "plant" if controller is None else f"plant + {args.controller} controller"
     print(
-        f"wrote {path}: {machine} plant, FMI 2.0 Model Exchange, linux64, {size_kb:.0f} kB, "
+        f"wrote {path}: {machine} {what}, FMI 2.0 Model Exchange, linux64, {size_kb:.0f} kB, "
         f"built in {seconds:.1f} s"
     )
     return 0

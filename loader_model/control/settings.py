@@ -171,7 +171,7 @@ def with_scaled_gains(
     gain k c on the signal normalised by n c). The linear-acceleration norm is shared by k_x and
     k_y, the angular-acceleration norm belongs to k_θ, the angle norm to k_φ; a norm is only
     made smaller (c ≤ 1). For machines whose designed gains exceed the file's range of ±100."""
-    gains = np.asarray(k_fb, dtype=float).ravel()
+    gains = np.array(k_fb, dtype=float).ravel()  # a copy: the caller's gains stay as given
     raw = to_raw(settings)
     groups = (("linear_acceleration_norm", (0, 1)), ("angular_acceleration_norm", (2,)),
               ("angle_norm", (3,)))  # fmt: skip

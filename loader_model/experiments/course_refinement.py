@@ -15,47 +15,166 @@ Stability is kept as a constraint: a K whose linearised closed loop has a margin
 load (:func:`~loader_model.control.comfort_design.evaluate_gain`), whose drive fails, or that
 leaves the controller settings' validated range of k_fb costs +inf, so the search never ends at
 an unstable gain.
+
+Any described machine (:mod:`loader_model.machines`) is refined the same way. The skid-steer
+drives its Table 6 trial plants (:func:`~loader_model.experiments.trials.plant_scenario`) with its
+bucket loads' pressure norms (100 and 200 bar) and gains within the settings file's ±100. Another
+machine drives its own plant per load case (:func:`~loader_model.plant.scenario.resolve_plant` on
+the skyhook's circuit), its controllers reading the plant's sensors by name with ‖p_A‖∞ = 1.5 ×
+the load's static piston pressure (:func:`~loader_model.plant.machine_parameters.pressure_norm`).
+Its gains are raw gains on the shipped norms, as the linear design gives them; a gain beyond
+the file's ±100 is driven with the norms scaled down by
+:func:`~loader_model.control.settings.with_scaled_gains` (the same control law), so its range is
+what the scaled norms' own validated ranges allow (each norm's lower limit).
 """
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
+
+if TYPE_CHECKING:
+    from loader_model.control.settings import ControllerSettings
+    from loader_model.plant.scenario import PlantScenario
 
 __all__ = ["course_cost", "refine_on_course"]
 
 
-def _drive(k_fb: np.ndarray, load: str, speed_kmh: float, params: np.ndarray | None) -> float:
-    from loader_model.experiments.trials import controller_scenario, plant_scenario
-    from loader_model.parameters.sets import bucket_load
-    from loader_model.plant.scenario import PlantScenario
+#: The name the refined gains' settings carry while they are driven.
+_SOURCE = "skyhook-optimised"
+#: Another machine's shipped plant per (machine, load), resolved once per process.
+_SHIPPED: dict[tuple[str, str], PlantScenario] = {}
+
+
+def _settings(k_fb: np.ndarray, machine: str) -> ControllerSettings:
+    """The shipped settings with gains ``k_fb``: as given for the skid-steer, with the norms
+    scaled for another machine (module notes); ValueError outside their validated ranges."""
+    from loader_model.control.settings import default_settings, with_gains, with_scaled_gains
+
+    if machine == DEFAULT_MACHINE:
+        return with_gains(default_settings(), k_fb, _SOURCE)
+    return with_scaled_gains(default_settings(), k_fb, _SOURCE)
+
+
+def _admissible(k_fb: np.ndarray, machine: str) -> bool:
+    """True when ``k_fb`` is within the range the settings of ``machine`` can carry."""
+    from loader_model.control.settings import ControllerSettings
+
+    if machine == DEFAULT_MACHINE:  # the settings file's range, ±100
+        allowed = ControllerSettings.__dataclass_fields__["k_fb"].metadata["allowed"]
+        return not (np.any(k_fb < allowed.low) or np.any(k_fb > allowed.high))
+    try:
+        _settings(k_fb, machine)
+    except ValueError:
+        return False
+    return True
+
+
+def _plant(load: str, machine: str, given: np.ndarray | PlantScenario | None) -> PlantScenario:
+    """The plant ``load`` is driven on: ``given`` (a resolved plant or a parameter vector of
+    ``machine``) or the shipped one on the skyhook's circuit."""
+    from loader_model.plant.plant_parameters import PlantOptions
+    from loader_model.plant.scenario import PlantScenario, resolve_plant
+
+    if isinstance(given, PlantScenario):
+        if given.machine != machine:
+            raise ValueError(
+                f"params[{load!r}] is a plant of machine {given.machine!r}; allowed: plants of "
+                f"machine {machine!r}"
+            )
+        return given
+    if given is not None:
+        return PlantScenario.from_vector(np.asarray(given, dtype=float), machine=machine)
+    if machine == DEFAULT_MACHINE:
+        from loader_model.experiments.trials import plant_scenario
+
+        return plant_scenario(load, _SOURCE)
+    if (machine, load) not in _SHIPPED:
+        options = PlantOptions.for_controller("skyhook")
+        _SHIPPED[machine, load] = resolve_plant(None, load, options, machine=machine)
+    return _SHIPPED[machine, load]
+
+
+def _drive(
+    k_fb: np.ndarray,
+    load: str,
+    speed_kmh: float,
+    params: np.ndarray | PlantScenario | None,
+    machine: str = DEFAULT_MACHINE,
+    duration_s: float | None = None,
+) -> float:
     from loader_model.simulation.courses import paper_course
+    from loader_model.simulation.scenario import ride_scenario
     from loader_model.simulation.simulator import course_input, simulate
 
-    plant = (
-        plant_scenario(load, "skyhook-optimised")
-        if params is None
-        else PlantScenario.from_vector(params)
+    plant = _plant(load, machine, params)
+    norm = None  # another machine's: its plant's (ride_scenario)
+    if machine == DEFAULT_MACHINE:
+        from loader_model.parameters.sets import bucket_load
+
+        norm = bucket_load(load).pressure_normalisation
+    scenario = ride_scenario(plant, "skyhook", _settings(k_fb, machine), pressure_norm_pa=norm)
+    result = simulate(
+        course_input(paper_course(speed_kmh), scenario), scenario, duration_s=duration_s
     )
-    norm = bucket_load(load).pressure_normalisation
-    scenario = controller_scenario("skyhook-optimised", plant, norm, tuple(k_fb))
-    result = simulate(course_input(paper_course(speed_kmh), scenario), scenario)
     return float(result.seat_evaluation().total_m_s2)
+
+
+def _machine_params(
+    machine: str | None,
+    loads: Sequence[str],
+    params: dict[str, np.ndarray | PlantScenario] | None,
+) -> tuple[str, dict[str, np.ndarray | PlantScenario] | None]:
+    """The machine's name, and for another machine than the skid-steer a plant per load
+    (``params`` as given, else its shipped plants), so that the linear checks and the drives
+    share them."""
+    name = resolve_machine_name(DEFAULT_MACHINE if machine is None else machine)
+    if name == DEFAULT_MACHINE or params is not None:
+        return name, params
+    return name, {load: _plant(load, name, None) for load in loads}
 
 
 def course_cost(
     k_fb: Any,
     loads: Sequence[str] = ("empty", "full"),
     speed_kmh: float = 9.0,
-    params: dict[str, np.ndarray] | None = None,
+    params: dict[str, np.ndarray | PlantScenario] | None = None,
+    *,
+    machine: str = DEFAULT_MACHINE,
+    duration_s: float | None = None,
 ) -> dict[str, float]:
-    """a_total [m/s²] per load of one nominal drive over the paper's course with gains ``k_fb``
-    (``params``: plant parameter vector per load, default the shipped loader's)."""
+    """a_total [m/s²] per load of one nominal drive over the paper's course with gains ``k_fb``.
+
+    Parameters
+    ----------
+    k_fb : array_like
+        The skyhook gains (4) on the shipped norms.
+    loads : sequence of str
+        Load cases driven.
+    speed_kmh : float
+        The course's speed.
+    params : dict, optional
+        Plant parameter vector or resolved plant per load (default the machine's shipped one).
+    machine : str
+        A machine name or description file (default the skid-steer; module notes).
+    duration_s : float, optional
+        Drive only the course's first ``duration_s`` seconds (default the whole course).
+
+    Raises
+    ------
+    ValueError
+        For gains the machine's settings cannot carry, or a plant of another machine.
+    """
     gain = np.asarray(k_fb, dtype=float).ravel()
+    name, params = _machine_params(machine, loads, params)
     return {
-        load: _drive(gain, load, speed_kmh, None if params is None else params[load])
+        load: _drive(
+            gain, load, speed_kmh, None if params is None else params[load], name, duration_s
+        )
         for load in loads
     }
 
@@ -66,9 +185,11 @@ def refine_on_course(
     loads: Sequence[str] = ("empty", "full"),
     speed_kmh: float = 9.0,
     margin: float | None = None,
-    params: dict[str, np.ndarray] | None = None,
+    params: dict[str, np.ndarray | PlantScenario] | None = None,
     max_evaluations: int = 120,
     progress: bool = True,
+    machine: str = DEFAULT_MACHINE,
+    duration_s: float | None = None,
 ) -> dict[str, Any]:
     """Minimise Σ a_total² over ``loads`` on the paper's course from ``gain0`` (module notes).
 
@@ -83,29 +204,38 @@ def refine_on_course(
     margin : float, optional
         Linear stability margin σ [rad/s] (default: the linear design's).
     params : dict, optional
-        Plant parameter vector per load (default: the shipped loader's).
+        Plant parameter vector or resolved plant per load (default: the machine's shipped one).
     max_evaluations : int
         Budget of cost evaluations (each drives every load once).
     progress : bool
         Show a progress bar.
+    machine : str
+        A machine name or description file (default the skid-steer; module notes).
+    duration_s : float, optional
+        Drive only the course's first ``duration_s`` seconds (default the whole course).
 
     Returns
     -------
     dict
         ``gain`` (1 x 4), ``cost`` (Σ a_total²), ``a_total`` per load, ``start_cost``,
-        ``start_a_total``, ``evaluations``, ``refused`` (unstable or failed evaluations).
+        ``start_a_total``, ``evaluations``, ``refused`` (unstable, failed or out-of-range
+        evaluations).
+
+    Raises
+    ------
+    ValueError
+        For a bad budget or start, or a start that misses the margin or fails on the course.
     """
     from scipy.optimize import minimize
     from tqdm import tqdm
 
     from loader_model.control.comfort_design import DEFAULT_MARGIN, comfort_plants, evaluate_gain
-    from loader_model.control.settings import ControllerSettings
     from loader_model.simulation.simulator import SimulationError
 
-    allowed = ControllerSettings.__dataclass_fields__["k_fb"].metadata["allowed"]
     sigma = DEFAULT_MARGIN if margin is None else float(margin)
     if isinstance(max_evaluations, bool) or int(max_evaluations) < 1:
         raise ValueError(f"max_evaluations must be an integer >= 1; got {max_evaluations!r}")
+    name, params = _machine_params(machine, loads, params)
     plants = comfort_plants(tuple(loads), params=params)
     start = np.asarray(gain0, dtype=float).ravel()
     if start.size != 4:
@@ -120,7 +250,7 @@ def refine_on_course(
         if key in seen:
             return seen[key][0]
         bar.update(1)
-        if np.any(k < allowed.low) or np.any(k > allowed.high):  # the settings file's range
+        if not _admissible(k, name):  # the range the machine's settings can carry
             refused += 1
             seen[key] = (np.inf, {})
             return np.inf
@@ -129,7 +259,7 @@ def refine_on_course(
             seen[key] = (np.inf, {})
             return np.inf
         try:
-            totals = course_cost(k, loads, speed_kmh, params)
+            totals = course_cost(k, loads, speed_kmh, params, machine=name, duration_s=duration_s)
         except SimulationError:
             refused += 1
             seen[key] = (np.inf, {})
@@ -142,8 +272,9 @@ def refine_on_course(
         start_cost = cost(start)
         if not np.isfinite(start_cost):
             raise ValueError(
-                f"gain0 {start.tolist()} misses the stability margin {sigma} rad/s or fails "
-                "on the course; start from a stable design (loader-model design)"
+                f"gain0 {start.tolist()} misses the stability margin {sigma} rad/s, fails "
+                f"on the course or leaves the range of machine {name!r}'s settings; start from "
+                "a stable design (loader-model design)"
             )
         simplex = np.vstack([start, start + np.diag(0.1 * np.maximum(np.abs(start), 1.0))])
         found = minimize(

@@ -5,11 +5,11 @@ seeds) on a :class:`~loader_model.experiments.variant.ModelVariant` each, cumula
 
 1. as it was: Table 5's flow as a cylinder leak for every controller, the seat on the rigid
    chassis, rigid-wheel tyres, Table 3 as printed (k_φ = −0.22);
-2. + circuit states: baseline and passive on closed load-holding valves (errata 11);
-3. + seat pad and occupant (errata 13);
-4. + tyre enveloping: the tandem elliptical cam (errata 13);
-5. + k_φ sign: Table 3 with k_φ = +0.22 (errata 12): the model as built, the shipped files;
-6. + calibrated: the estimated parameters fitted to the six 9 km/h cells
+2. then circuit states: baseline and passive on closed load-holding valves (errata 11);
+3. then seat pad and occupant (errata 13);
+4. then tyre enveloping: the tandem elliptical cam (errata 13);
+5. then k_φ sign: Table 3 with k_φ = +0.22 (errata 12): the model as built, the shipped files;
+6. then calibrated: the estimated parameters fitted to the six 9 km/h cells
    (:mod:`~loader_model.experiments.calibration_table6`), the 18 km/h cells held out;
 7. the reverse check: fitted to the 18 km/h cells, 9 km/h held out.
 

@@ -118,10 +118,10 @@ def _write_sources(
     variables = fmu_variables(params, x0, u0, info.name)
     identifier, n_set, n_z = MODEL_IDENTIFIER, 0, 0
     if controller is not None:
-        sample, init = closed_loop_functions(controller, ode, start)
+        sample, init = closed_loop_functions(controller, ode, start, info.name)
         generator.add(sample)
         generator.add(init)
-        variables = closed_loop_variables(variables, controller, settings)
+        variables = closed_loop_variables(variables, controller, settings, info.name)
         identifier = f"loader_{controller}"
         n_set, n_z = sample.size1_in(2) - n_p, sample.size1_in(3)
     generator.generate(str(folder) + os.sep)
@@ -213,8 +213,8 @@ def export_plant_fmu(
     machine : str
         A machine of :func:`~loader_model.machines.list_machines` or its description file
         (default the skid-steer); ``params`` is then in its plant layout's order
-        (:func:`~loader_model.plant.layout.plant_layout`). The closed loop is the skid-steer's
-        only.
+        (:func:`~loader_model.plant.layout.plant_layout`); a controller reads the same named
+        sensors on every machine (:mod:`loader_model.fmu.closed_loop`).
 
     Returns
     -------
@@ -235,15 +235,13 @@ def export_plant_fmu(
         raise ValueError(
             f"params must be {n_params} finite plant parameters; got shape {params.shape}"
         )
-    if controller is not None and not info.is_default:
-        raise ValueError(
-            f"a closed-loop FMU is built for the skid-steer only; export {info.name!r} with "
-            "--controller none"
-        )
     if controller is not None:
         controller_state_names(controller)  # ValueError naming the allowed ones
         if settings is None or np.shape(settings) != (len(SETTINGS_NAMES),):
-            raise ValueError(f"a controller needs its {len(SETTINGS_NAMES)} settings")
+            raise ValueError(
+                f"settings: controller {controller!r} needs its {len(SETTINGS_NAMES)} settings "
+                f"(settings_vector_for_plant); got shape {np.shape(settings)}"
+            )
     compiler = find_compiler()
     folder_name = _platform_folder()
     with tempfile.TemporaryDirectory(prefix="loader_fmu_") as temporary:

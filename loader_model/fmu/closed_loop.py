@@ -17,6 +17,14 @@ Controller parameters: the settings of :data:`~loader_model.control.settings.SET
 as ``controller.<name>``, except four facts of the plant that the graph takes from the plant's
 own parameters (V_p_max, g, N_x) and from its static equilibrium (u_hold), so that changing a
 plant parameter in the importing tool keeps the controller consistent.
+
+Any described machine (issue 23): the controllers read their sensors by name
+(:data:`~loader_model.control.sensors.SENSOR_NAMES`: f_Hx, f_Hy, f_Ny, φ, p_A), which every
+machine's plant layout has among its outputs, and the settings' plant facts by parameter name;
+the graph takes the machine's outputs, states and FMU parameters from
+:func:`~loader_model.plant.layout.plant_layout` and
+:func:`~loader_model.fmu.variables.fmu_parameter_names`. A machine whose plant lacks a sensor
+or one of those parameters is refused naming it.
 """
 
 from __future__ import annotations
@@ -27,8 +35,9 @@ import numpy as np
 from loader_model.control.controllers import controller_function, controller_state_names
 from loader_model.control.sensors import SENSOR_NAMES
 from loader_model.control.settings import SETTINGS_NAMES
-from loader_model.fmu.variables import FMU_PARAMETER_NAMES, FmuVariable
-from loader_model.plant.plant import OUTPUT_NAMES
+from loader_model.fmu.variables import FmuVariable, fmu_parameter_names
+from loader_model.machines import DEFAULT_MACHINE
+from loader_model.plant.layout import plant_layout
 
 __all__ = [
     "CONTROLLER_PARAMETERS",
@@ -67,18 +76,50 @@ def controller_parameter_values(settings: np.ndarray) -> np.ndarray:
     return np.array([settings[SETTINGS_NAMES.index(name)] for name in _EXPOSED])
 
 
+def _named_indices(
+    names: tuple[str, ...], wanted: tuple[str, ...], what: str, machine: str
+) -> list[int]:
+    """Indices of ``wanted`` in ``names``; ValueError naming the missing ones."""
+    missing = [name for name in wanted if name not in names]
+    if missing:
+        raise ValueError(
+            f"machine {machine!r}: its plant has no {what} {missing} that the controller "
+            f"reads; a closed-loop FMU needs {list(wanted)}"
+        )
+    return [names.index(name) for name in wanted]
+
+
 def closed_loop_functions(
-    controller: str, ode: ca.Function, start: ca.Function
+    controller: str, ode: ca.Function, start: ca.Function, machine: str = DEFAULT_MACHINE
 ) -> tuple[ca.Function, ca.Function]:
     """``fmu_sample(x, in, p, z) -> (z_next, u)`` and ``fmu_ctrl_init(x, in, p) -> z0``.
 
     ``p`` is (FMU plant parameters, controller parameters); ``in`` is (held command, w).
     ``ode`` and ``start`` are the plant FMU's Functions (:func:`~loader_model.fmu.build.
-    fmu_functions`).
+    fmu_functions`) of ``machine`` (default the skid-steer), whose outputs, states and FMU
+    parameters are then named by its plant layout.
+
+    Raises
+    ------
+    ValueError
+        For an unknown controller, or a machine whose plant lacks a sensor output or a plant
+        fact of the settings (named).
     """
     law = controller_function(controller)
     n_z = len(controller_state_names(controller))
-    n_p = len(FMU_PARAMETER_NAMES)
+    layout = plant_layout(machine)
+    parameter_names = fmu_parameter_names(machine)
+    n_p = len(parameter_names)
+    facts_from = tuple(v for v in _FROM_PLANT.values() if v)
+    fact_index = dict(
+        zip(
+            facts_from,
+            _named_indices(parameter_names, facts_from, "parameters", machine),
+            strict=True,
+        )
+    )
+    sensor_index = _named_indices(layout.output_names, SENSOR_NAMES, "outputs", machine)
+    (hold_index,) = _named_indices(layout.state_names, ("V_p",), "state", machine)
     x = ca.SX.sym("x", ode.size1_in(0))
     inputs = ca.SX.sym("in", ode.size1_in(1))
     p = ca.SX.sym("p", n_p + len(_EXPOSED))
@@ -87,14 +128,12 @@ def closed_loop_functions(
     _, y = ode(x, inputs, plant_p)
     x0 = start(plant_p)
     # the holding command of the static equilibrium is V_p of the static state
-    from loader_model.plant.plant import STATE_NAMES
-
     facts = {
-        "u_hold": x0[STATE_NAMES.index("V_p")],
-        **{k: plant_p[FMU_PARAMETER_NAMES.index(v)] for k, v in _FROM_PLANT.items() if v},
+        "u_hold": x0[hold_index],
+        **{k: plant_p[fact_index[v]] for k, v in _FROM_PLANT.items() if v},
     }
     settings = ca.vertcat(*[exposed.get(name, facts.get(name)) for name in SETTINGS_NAMES])
-    sensors = ca.vertcat(*[y[OUTPUT_NAMES.index(name)] for name in SENSOR_NAMES])
+    sensors = ca.vertcat(*[y[i] for i in sensor_index])
     z_next, u = law(z, sensors, settings)
     sample = ca.Function(
         "fmu_sample", [x, inputs, p, z], [z_next, u], ["x", "in", "p", "z"], ["z_next", "u"]
@@ -107,16 +146,25 @@ def closed_loop_functions(
 
 
 def closed_loop_variables(
-    plant_variables: list[FmuVariable], controller: str, settings: np.ndarray
+    plant_variables: list[FmuVariable],
+    controller: str,
+    settings: np.ndarray,
+    machine: str = DEFAULT_MACHINE,
 ) -> list[FmuVariable]:
     """The closed-loop FMU's Real variables, renumbered 0, 1, ... (wrapper layout).
 
-    Order: plant parameters, ``controller.<setting>``, ``V_p_ref`` (now a discrete output: the
-    held command), the exogenous inputs, states, derivatives, plant outputs, ``controller.<z>``.
+    Order: plant parameters (those of ``machine``, default the skid-steer), ``controller.
+    <setting>``, ``V_p_ref`` (now a discrete output: the held command), the exogenous inputs,
+    states, derivatives, plant outputs, ``controller.<z>``.
     """
     from dataclasses import replace
 
-    n_p = len(FMU_PARAMETER_NAMES)
+    n_p = len(fmu_parameter_names(machine))
+    if plant_variables[n_p].name != "V_p_ref":
+        raise ValueError(
+            f"plant_variables of machine {machine!r}: variable {n_p} is "
+            f"{plant_variables[n_p].name!r}, expected the command 'V_p_ref'"
+        )
     settings_vars = [
         FmuVariable(
             f"controller.{name}", 0, "parameter", "fixed", "exact", unit, description, value

@@ -92,7 +92,8 @@ def reference_response(
     states start at their fixed point (:func:`~loader_model.control.linear_controller.
     linear_controller`). The time grid must then be the controller's sample grid. The command is
     returned as ``V_p_ref``. ``machine`` (default the skid-steer) is the plant's machine; ``w``
-    then has the columns of its exogenous inputs (the same names as the skid-steer's).
+    then has the columns of its exogenous inputs (the same names as the skid-steer's), and the
+    controller reads its sensors by name from that machine's outputs.
     """
     layout = plant_layout(machine)
     plant = plant_function(machine)
@@ -113,13 +114,17 @@ def reference_response(
         float(steps[0]),
         {"abstol": reltol, "reltol": reltol, "max_num_steps": 100000},
     )
-    law = sensors = None
+    law = None
     if controller is not None:
         from loader_model.control.controllers import controller_function
         from loader_model.control.linear_controller import linear_controller
         from loader_model.control.sensors import sensor_signals
 
-        law, sensors = controller_function(controller), sensor_signals
+        law = controller_function(controller)
+
+        def sensors(y: np.ndarray) -> np.ndarray:
+            return sensor_signals(y, machine)
+
         y0 = np.asarray(plant(x0, u0, w[0], params)[1]).ravel()
         z_c = linear_controller(controller, settings, sensors(y0)).operating_state
     states, commands = [x0 / nominal], []

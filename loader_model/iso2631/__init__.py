@@ -7,7 +7,8 @@
   factor, running r.m.s., MTVV, VDV, eVDV.
 - :mod:`~loader_model.iso2631.comfort`: Annex C.2.3's likely comfort reactions to a total value.
 - :mod:`~loader_model.iso2631.exposure`: daily exposure A(8), Directive 2002/44/EC values.
-- :mod:`~loader_model.iso2631.timeseries`: labelled multi-axis records and CSV input.
+- :mod:`~loader_model.iso2631.timeseries`: labelled multi-axis records.
+- :mod:`~loader_model.iso2631.vibration_csv`: records from CSV files, streamed.
 - :mod:`~loader_model.iso2631.evaluation`: a whole record, per axis and in total.
 - :mod:`~loader_model.iso2631.plot`: plot of the weighting curves (matplotlib, lazily).
 """
@@ -67,8 +68,8 @@ from loader_model.iso2631.timeseries import (
     VibrationRecord,
     axis_unit,
     check_axis_name,
-    read_vibration_csv,
 )
+from loader_model.iso2631.vibration_csv import read_vibration_csv
 from loader_model.iso2631.weightings import (
     NOMINAL_BAND_HZ,
     WEIGHTING_NAMES,

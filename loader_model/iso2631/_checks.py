@@ -17,8 +17,15 @@ def shown(value: object) -> str:
 
 
 def as_signal(value: object, name: str) -> np.ndarray:
-    """Return ``value`` as a non-empty, finite, 1-D float array or raise ValueError naming it."""
-    array = real_array(name, value, "a 1-D array of real numbers")
+    """Return ``value`` as a non-empty, finite, 1-D float array or raise ValueError naming it.
+
+    A float64 array is returned as it is, not copied (a long record is evaluated by several
+    functions that each check it); callers do not write to it.
+    """
+    if isinstance(value, np.ndarray) and value.dtype == np.float64:
+        array = value
+    else:
+        array = real_array(name, value, "a 1-D array of real numbers")
     if array.ndim != 1:
         raise ValueError(f"{name} must be a 1-D array; got shape {array.shape}")
     if array.size == 0:

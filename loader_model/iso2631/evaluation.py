@@ -27,6 +27,7 @@ from loader_model.iso2631.metrics import (
     crest_factor,
     estimated_vibration_dose_value,
     maximum_transient_vibration_value,
+    peak_magnitude,
     vibration_dose_value,
     vibration_total_value,
     weighted_rms,
@@ -170,7 +171,7 @@ def evaluate_record(
             )
         weighted = weight_acceleration(acceleration, record.sample_rate_hz, weighting)
         rms = weighted_rms(weighted)
-        if not rms > NO_VIBRATION_RATIO * float(np.max(np.abs(acceleration))):
+        if not rms > NO_VIBRATION_RATIO * peak_magnitude(acceleration):
             weighted = np.zeros_like(weighted)  # zero up to rounding: no vibration
             rms = 0.0
         evaluations.append(
@@ -191,6 +192,7 @@ def evaluate_record(
                 estimated_vdv=estimated_vibration_dose_value(rms, record.duration_s),
             )
         )
+        del weighted  # a long record's next axis is weighted without this one in memory
     total = vibration_total_value(
         {item.axis: item.weighted_rms for item in evaluations},
         {item.axis: item.k_factor for item in evaluations},

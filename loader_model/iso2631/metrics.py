@@ -8,19 +8,21 @@ of sampled trigonometric signals.
 
 from __future__ import annotations
 
+import itertools
 import math
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 
 import numpy as np
 
 from loader_model.iso2631._checks import as_positive, as_signal, shown
-from loader_model.iso2631._digital import sos_filter
+from loader_model.iso2631._digital import SEGMENT_SAMPLES, sos_filter
 
 __all__ = [
     "RUNNING_RMS_METHODS",
     "crest_factor",
     "estimated_vibration_dose_value",
     "maximum_transient_vibration_value",
+    "peak_magnitude",
     "running_rms",
     "vibration_dose_value",
     "vibration_total_value",
@@ -29,6 +31,28 @@ __all__ = [
 
 #: Running r.m.s. integrations of ISO 2631-1 6.3.1.
 RUNNING_RMS_METHODS = ("linear", "exponential")
+
+
+def _segments(signal: np.ndarray) -> Iterator[np.ndarray]:
+    """Consecutive views of ``signal`` of :data:`SEGMENT_SAMPLES` samples: the sums below run
+    over them so that a long record needs no temporary of its own length."""
+    for start in range(0, signal.size, SEGMENT_SAMPLES):
+        yield signal[start : start + SEGMENT_SAMPLES]
+
+
+def _sum_of_powers(signal: np.ndarray, power: int) -> float:
+    """Sum of ``signal**power`` (power 2 or 4) by segments; each segment's sum is NumPy's
+    pairwise sum, the segments' sums are added exactly (:func:`math.fsum`)."""
+    sums = []
+    for segment in _segments(signal):
+        squared = segment * segment  # (a^2)^2: ten times faster than a**4, which calls pow()
+        sums.append(float(np.sum(squared if power == 2 else squared * squared)))
+    return math.fsum(sums)
+
+
+def peak_magnitude(signal: np.ndarray) -> float:
+    """max |signal|, without a temporary array of the signal's length."""
+    return max(float(np.max(signal)), -float(np.min(signal)))
 
 
 def _check_non_negative(value: float, name: str) -> None:
@@ -52,7 +76,7 @@ def weighted_rms(weighted_acceleration: np.ndarray) -> float:
         a_w in the unit of the input.
     """
     signal = as_signal(weighted_acceleration, "weighted_acceleration")
-    return float(np.sqrt(np.mean(signal * signal)))
+    return math.sqrt(_sum_of_powers(signal, 2) / signal.size)
 
 
 def vibration_total_value(
@@ -99,7 +123,7 @@ def crest_factor(weighted_acceleration: np.ndarray) -> float:
     rms = weighted_rms(signal)
     if rms == 0.0:
         return math.nan
-    return float(np.max(np.abs(signal)) / rms)
+    return peak_magnitude(signal) / rms
 
 
 def running_rms(
@@ -135,6 +159,25 @@ def running_rms(
     numpy.ndarray
         a_w(t0) in the unit of the input.
     """
+    mean_squares = _mean_square_segments(
+        weighted_acceleration, sample_rate_hz, integration_time_s, method
+    )
+    count, segment = next(mean_squares)
+    out = np.empty(count)
+    start = 0
+    for part in itertools.chain([segment], (part for _, part in mean_squares)):
+        out[start : start + part.size] = part
+        start += part.size
+    np.maximum(out, 0.0, out=out)  # >= 0 up to rounding
+    return np.sqrt(out, out=out)
+
+
+def _mean_square_segments(
+    weighted_acceleration: np.ndarray, sample_rate_hz: float, integration_time_s: float, method: str
+) -> Iterator[tuple[int, np.ndarray]]:
+    """Check the arguments of :func:`running_rms` and yield its mean squares a_w(t0)² by
+    consecutive segments, each as (number of values in all, segment); the linear integration's
+    running sum carries over from segment to segment exactly as one cumulative sum would."""
     signal = as_signal(weighted_acceleration, "weighted_acceleration")
     rate = as_positive(sample_rate_hz, "sample_rate_hz", "Hz")
     tau = as_positive(integration_time_s, "integration_time_s", "s")
@@ -146,14 +189,23 @@ def running_rms(
             f"integration_time_s must span 1 to {signal.size} samples of the signal "
             f"({signal.size / rate:.4g} s at {rate:g} Hz); got {shown(integration_time_s)} s"
         )
-    squared = signal * signal
-    if method == "linear":
-        cumulative = np.concatenate([[0.0], np.cumsum(squared)])
-        mean_square = (cumulative[window:] - cumulative[:-window]) / window
-        return np.sqrt(np.maximum(mean_square, 0.0))
-    decay = math.exp(-1.0 / (tau * rate))
-    mean_square, _ = sos_filter(np.array([[1.0 - decay, 0.0, 0.0, 1.0, -decay, 0.0]]), squared)
-    return np.sqrt(np.maximum(mean_square, 0.0))  # >= 0 up to rounding
+    if method == "exponential":
+        decay = math.exp(-1.0 / (tau * rate))
+        mean_square, _ = sos_filter(
+            np.array([[1.0 - decay, 0.0, 0.0, 1.0, -decay, 0.0]]), signal * signal
+        )
+        yield signal.size, mean_square
+        return
+    cumulative = np.empty(signal.size + 1)  # sums of the first k squares, k = 0 .. n
+    cumulative[0] = 0.0
+    for start in range(0, signal.size, SEGMENT_SAMPLES):
+        squared = signal[start : start + SEGMENT_SAMPLES] ** 2
+        squared[0] += cumulative[start]  # then cumsum adds in the order one cumsum would
+        np.cumsum(squared, out=cumulative[start + 1 : start + 1 + squared.size])
+    count = signal.size - window + 1
+    for start in range(0, count, SEGMENT_SAMPLES):
+        stop = min(start + SEGMENT_SAMPLES, count)
+        yield count, (cumulative[start + window : stop + window] - cumulative[start:stop]) / window
 
 
 def maximum_transient_vibration_value(
@@ -163,17 +215,17 @@ def maximum_transient_vibration_value(
     integration_time_s: float = 1.0,
     method: str = "linear",
 ) -> float:
-    """MTVV, the maximum of the running r.m.s. over t0 (ISO 2631-1 6.3.1); see :func:`running_rms`."""
-    return float(
-        np.max(
-            running_rms(
-                weighted_acceleration,
-                sample_rate_hz,
-                integration_time_s=integration_time_s,
-                method=method,
-            )
+    """MTVV, the maximum of the running r.m.s. over t0 (ISO 2631-1 6.3.1); see :func:`running_rms`.
+
+    Evaluated segment by segment, without the running r.m.s. of the whole record in memory.
+    """
+    largest = max(
+        float(np.max(segment))
+        for _, segment in _mean_square_segments(
+            weighted_acceleration, sample_rate_hz, integration_time_s, method
         )
     )
+    return math.sqrt(max(largest, 0.0))
 
 
 def vibration_dose_value(weighted_acceleration: np.ndarray, sample_rate_hz: float) -> float:
@@ -183,8 +235,7 @@ def vibration_dose_value(weighted_acceleration: np.ndarray, sample_rate_hz: floa
     """
     signal = as_signal(weighted_acceleration, "weighted_acceleration")
     rate = as_positive(sample_rate_hz, "sample_rate_hz", "Hz")
-    squared = signal * signal  # (a^2)^2: ten times faster than a**4, which calls pow()
-    return float(np.sum(squared * squared) / rate) ** 0.25
+    return (_sum_of_powers(signal, 4) / rate) ** 0.25
 
 
 def estimated_vibration_dose_value(weighted_rms_m_s2: float, duration_s: float) -> float:

@@ -74,7 +74,7 @@ def machine_plant_parameter_vector(
     ----------
     name : str
         A machine of :func:`loader_model.machines.list_machines` other than the skid-steer.
-    params : MachineParameters, path or None
+    params : MachineParameters, str, pathlib.Path or None
         Its parameter file (None: the shipped one).
     load : str, optional
         A bucket load case of the file (None: [model] as given).

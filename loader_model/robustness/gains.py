@@ -14,6 +14,12 @@ Design plants (:func:`~loader_model.control.comfort_design.comfort_plants`): ISO
 study's class at its first nominal speed. The stability margin of a gain on a sample is the largest
 real part of the closed-loop poles of the plant and skyhook (the design plant's loop poles: the
 sampled plant linearised at its static equilibrium); positive means unstable.
+
+Another machine (``[study] machine``, issue 23): the same methods on its comfort plants, built
+from its shipped flat parameter file (nominal) or from the sample's parameters
+(:func:`~loader_model.robustness.machine_study.machine_sample_plant`, robust). Its gains, like
+those of ``design --machine``, may exceed a settings file's ±100; the study hands them to the
+controller as numbers, so they need no rescaling.
 """
 
 from __future__ import annotations
@@ -38,6 +44,26 @@ def _row(gain: Any) -> tuple[float, ...]:
     return tuple(float(g) for g in np.asarray(gain, dtype=float).ravel())
 
 
+def _sample_design_parameters(spec: SampleSpec, machine: str) -> Any:
+    """The sample's plant vector (skid-steer) or resolved plant (another machine)."""
+    if machine == "skid_steer":
+        from loader_model.robustness.sampling import sample_plant_vector
+
+        return sample_plant_vector(spec)[0]
+    from loader_model.robustness.machine_study import machine_sample_plant
+
+    return machine_sample_plant(spec, machine)
+
+
+def _nominal_parameters(study: Study) -> dict[str, Any] | None:
+    """None for the skid-steer (the shipped loader), else the machine's plant per study load."""
+    if study.machine == "skid_steer":
+        return None
+    from loader_model.plant.scenario import resolve_plant
+
+    return {load: resolve_plant(None, load, machine=study.machine) for load in study.loads}
+
+
 def robust_gain(study: Study) -> tuple[tuple[float, ...], list[SampleSpec]]:
     """Optimise K_fb over ``study.robust_plants`` plants drawn from the study (stream 1).
 
@@ -46,13 +72,12 @@ def robust_gain(study: Study) -> tuple[tuple[float, ...], list[SampleSpec]]:
     """
     from loader_model.control.comfort_design import comfort_plants
     from loader_model.control.gain_design import design_gains
-    from loader_model.robustness.sampling import sample_plant_vector
 
     specs = sample_specs(study, study.robust_plants, stream=1)
     plants = []
     for spec in specs:
         try:
-            params, _ = sample_plant_vector(spec)
+            params = _sample_design_parameters(spec, study.machine)
         except ValueError:
             continue
         speed = spec.speed_kmh * spec.speed_factor
@@ -69,7 +94,7 @@ def resolve_gains(study: Study) -> Gains:
     Parameters
     ----------
     study : Study
-        The study (loads, road class, first speed, gain methods, ``robust_plants``).
+        The study (machine, loads, road class, first speed, gain methods, ``robust_plants``).
 
     Returns
     -------
@@ -95,7 +120,9 @@ def resolve_gains(study: Study) -> Gains:
     methods = {spec for _, spec in study.gains if isinstance(spec, str)}
     nominal = ()
     if methods & {"lqr", "optimised"}:
-        nominal = comfort_plants(study.loads, study.road_class, study.speeds_kmh[0])
+        nominal = comfort_plants(
+            study.loads, study.road_class, study.speeds_kmh[0], _nominal_parameters(study)
+        )
     optimised = _row(design_gains(nominal, "optimise").gain) if "optimised" in methods else None
     robust = robust_gain(study)[0] if "robust" in methods else None
     for name, spec in study.gains:

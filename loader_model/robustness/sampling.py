@@ -153,13 +153,19 @@ def sample_plant(spec: SampleSpec, machine: str = "skid_steer") -> PlantScenario
     :func:`sample_plant_vector` with its static equilibrium
     (:func:`~loader_model.plant.scenario.resolve_plant`).
 
+    Parameters
+    ----------
+    spec : SampleSpec
+        The sample.
+    machine : str
+        The described machine (default the skid-steer); another machine's plant comes from its
+        flat parameter file
+        (:func:`~loader_model.robustness.machine_study.machine_sample_plant`).
+
     Raises
     ------
     ValueError
         From the parameter files' range and consistency checks.
-
-    ``machine`` (default the skid-steer): another machine's plant from its flat parameter file
-    (:func:`~loader_model.robustness.machine_study.machine_sample_plant`).
     """
     from loader_model.plant.scenario import resolve_plant
 

@@ -283,11 +283,6 @@ def _build(data: dict[str, Any], load_cases: tuple[str, ...], course_speeds: tup
     controllers = _table(data, "controllers")
     _keys(controllers, ("compare", "gains", "robust_plants"), "controllers.")
     gains = _gains(controllers.get("gains", {}))
-    if gains and machine != "skid_steer":
-        raise ValueError(
-            f"controllers.gains: further skyhook gains are designed on the skid-steer only; "
-            f"machine {machine!r} compares the baseline with {list(COMPARED_CONTROLLERS)}"
-        )
     parameters = _table(data, "parameters")
     varied = []
     for path, spec in parameters.items():

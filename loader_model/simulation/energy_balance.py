@@ -14,6 +14,11 @@ with the power flows of :mod:`loader_model.plant.energy`. Two ways to get the in
 
 The residual (inputs − losses − ΔE) measures the integration, not the model: the model's
 balance is an identity (``tests/plant/test_plant_energy.py``).
+
+Any described machine (:mod:`loader_model.machines`; default the skid-steer): its plant and
+energy Functions (:func:`~loader_model.plant.energy.energy_function`), with the stores and losses
+of :func:`~loader_model.plant.energy.energy_names` (a machine with locked cylinders adds
+``internal``: their springs and dampers) and one road displacement per axle and axis.
 """
 
 from __future__ import annotations
@@ -24,9 +29,11 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
-from loader_model.plant.energy import ENERGY_NAMES, INPUT_POWER_NAMES, LOSS_NAMES, energy_function
+from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
+from loader_model.plant.energy import INPUT_POWER_NAMES, energy_function, energy_names
 from loader_model.plant.equilibrium import static_state
-from loader_model.plant.plant import EXOGENOUS_NAMES, STATE_NAMES, plant_function
+from loader_model.plant.layout import PlantLayout, plant_layout
+from loader_model.plant.plant import plant_function
 from loader_model.simulation.controllers import CONTROLLER_PERIOD_S
 from loader_model.simulation.result import SimulationResult
 from loader_model.simulation.simulator import SimulationError, exogenous_table
@@ -83,33 +90,63 @@ class EnergyBalance:
 
 
 def _balance(
-    duration_s: float, method: str, start: np.ndarray, end: np.ndarray, integrals: np.ndarray
+    duration_s: float,
+    method: str,
+    start: np.ndarray,
+    end: np.ndarray,
+    integrals: np.ndarray,
+    machine: str = DEFAULT_MACHINE,
 ) -> EnergyBalance:
     n_in = len(INPUT_POWER_NAMES)
+    stores, losses = energy_names(machine)
     return EnergyBalance(
         duration_s,
         method,
-        dict(zip(ENERGY_NAMES, (end - start).tolist(), strict=True)),
+        dict(zip(stores, (end - start).tolist(), strict=True)),
         dict(zip(INPUT_POWER_NAMES, integrals[:n_in].tolist(), strict=True)),
-        dict(zip(LOSS_NAMES, integrals[n_in:].tolist(), strict=True)),
+        dict(zip(losses, integrals[n_in:].tolist(), strict=True)),
     )
 
 
-def _stored(x: np.ndarray, u: float, w: np.ndarray, params: np.ndarray) -> np.ndarray:
-    return np.asarray(energy_function()(x, u, w, np.zeros(4), params)[1], dtype=float).ravel()
+def _n_road(layout: PlantLayout) -> int:
+    """Number of road displacements (per axle, x and y) at the start of w."""
+    return len(layout.machine.road_names)
 
 
-def _period_integrator(period_s: float, npar: int, rtol: float, atol: float) -> ca.Function:
-    nw, nx = len(EXOGENOUS_NAMES), len(STATE_NAMES)
-    state = ca.SX.sym("state", nx + len(INPUT_POWER_NAMES) + len(LOSS_NAMES))
+def _stored(
+    x: np.ndarray, u: float, w: np.ndarray, params: np.ndarray, machine: str = DEFAULT_MACHINE
+) -> np.ndarray:
+    still = np.zeros(_n_road(plant_layout(machine)))
+    return np.asarray(energy_function(machine)(x, u, w, still, params)[1], dtype=float).ravel()
+
+
+def _machine_params(params: Sequence[float] | np.ndarray, machine: str) -> tuple[str, np.ndarray]:
+    """The machine's name and ``params`` as a vector of its plant's size."""
+    name = resolve_machine_name(machine)
+    size = len(plant_layout(name).parameter_names)
+    vector = np.asarray(params, dtype=float).ravel()
+    if vector.size != size:
+        raise ValueError(
+            f"params must have the {size} plant parameters of machine {name!r}; got {vector.size}"
+        )
+    return name, vector
+
+
+def _period_integrator(
+    period_s: float, npar: int, rtol: float, atol: float, machine: str = DEFAULT_MACHINE
+) -> ca.Function:
+    layout = plant_layout(machine)
+    nw, nx, n_road = len(layout.exogenous_names), len(layout.state_names), _n_road(layout)
+    losses_named = energy_names(machine)[1]
+    state = ca.SX.sym("state", nx + len(INPUT_POWER_NAMES) + len(losses_named))
     t = ca.SX.sym("t")
     p = ca.SX.sym("p", 1 + 2 * nw + npar)
     u, w0, w1, params = p[0], p[1 : 1 + nw], p[1 + nw : 1 + 2 * nw], p[1 + 2 * nw :]
     w = w0 + (w1 - w0) * (t / period_s)
-    road_velocity = (w1[0:4] - w0[0:4]) / period_s
+    road_velocity = (w1[0:n_road] - w0[0:n_road]) / period_s
     x = state[:nx]
-    _, _, inputs, losses, _ = energy_function()(x, u, w, road_velocity, params)
-    ode = ca.vertcat(plant_function()(x, u, w, params)[0], inputs, losses)
+    _, _, inputs, losses, _ = energy_function(machine)(x, u, w, road_velocity, params)
+    ode = ca.vertcat(plant_function(machine)(x, u, w, params)[0], inputs, losses)
     options = {"reltol": rtol, "abstol": atol, "max_num_steps": 100_000}
     dae = {"x": state, "t": t, "p": p, "ode": ode}
     return ca.integrator("energy_period", "cvodes", dae, 0.0, period_s, options)
@@ -123,6 +160,7 @@ def reference_energy_balance(
     period_s: float = CONTROLLER_PERIOD_S,
     rtol: float = 1e-10,
     atol: float = 1e-12,
+    machine: str = DEFAULT_MACHINE,
 ) -> EnergyBalance:
     """Balance of the hold run over ``road`` by CVODES with the integrals as states.
 
@@ -138,19 +176,24 @@ def reference_energy_balance(
         Period of the road's linear interpolation (the controller's), s.
     rtol, atol : float
         CVODES tolerances (as :func:`~loader_model.simulation.reference.reference_simulation`).
+    machine : str
+        A machine name or description file (default the skid-steer); ``params`` is its plant's.
 
     Raises
     ------
+    ValueError
+        If ``params`` does not have the machine's number of parameters.
     SimulationError
         If CVODES fails in a period.
     """
-    params = np.asarray(params, dtype=float).ravel()
-    x, u = static_state(params)
+    name, params = _machine_params(params, machine)
+    x, u = static_state(params, name)
     total_s = road.duration_s if duration_s is None else float(duration_s)
     count = int(np.floor(total_s / period_s + 1e-9))
     exogenous = exogenous_table(road, np.arange(count + 1) * period_s)
-    integrator = _period_integrator(period_s, params.size, rtol, atol)
-    state = np.concatenate([x, np.zeros(len(INPUT_POWER_NAMES) + len(LOSS_NAMES))])
+    integrator = _period_integrator(period_s, params.size, rtol, atol, name)
+    n_losses = len(energy_names(name)[1])
+    state = np.concatenate([x, np.zeros(len(INPUT_POWER_NAMES) + n_losses)])
     for k in range(count):
         parameters = np.concatenate([[u], exogenous[k], exogenous[k + 1], params])
         try:
@@ -159,34 +202,58 @@ def reference_energy_balance(
             raise SimulationError(
                 f"CVODES failed in the period starting at t = {k * period_s:.4f} s ({error})"
             ) from None
-    nx = len(STATE_NAMES)
-    start = _stored(x, u, exogenous[0], params)
-    end = _stored(state[:nx], u, exogenous[count], params)
-    return _balance(count * period_s, f"CVODES rtol {rtol:g}", start, end, state[nx:])
+    nx = len(plant_layout(name).state_names)
+    start = _stored(x, u, exogenous[0], params, name)
+    end = _stored(state[:nx], u, exogenous[count], params, name)
+    return _balance(count * period_s, f"CVODES rtol {rtol:g}", start, end, state[nx:], name)
 
 
 def simulated_energy_balance(
-    result: SimulationResult, road: RoadInput, params: Sequence[float] | np.ndarray
+    result: SimulationResult,
+    road: RoadInput,
+    params: Sequence[float] | np.ndarray,
+    *,
+    machine: str = DEFAULT_MACHINE,
 ) -> EnergyBalance:
     """Balance of a :func:`~loader_model.simulation.simulator.simulate` run, trapezoid over its
-    rows and the final state (module notes), with the disturbance the run recorded."""
-    params = np.asarray(params, dtype=float).ravel()
+    rows and the final state (module notes), with the disturbance the run recorded.
+
+    Parameters
+    ----------
+    result : SimulationResult
+        The run (its states, command and recorded disturbance by name).
+    road : RoadInput
+        The road table it ran on.
+    params : array_like
+        Its plant parameter vector.
+    machine : str
+        A machine name or description file (default the skid-steer).
+
+    Raises
+    ------
+    ValueError
+        If ``params`` does not have the machine's number of parameters.
+    """
+    name, params = _machine_params(params, machine)
+    layout = plant_layout(name)
+    n_road = _n_road(layout)
     time_s = np.append(result.time_s, 2 * result.time_s[-1] - result.time_s[-2])
-    states = np.column_stack([result[name] for name in STATE_NAMES])
+    states = np.column_stack([result[state] for state in layout.state_names])
     states = np.vstack([states, result.final_state])
     commands = np.append(result["V_p_ref"], result["V_p_ref"][-1])
-    recorded = np.column_stack([result[name] for name in EXOGENOUS_NAMES[8:]])
+    forces = layout.exogenous_names[2 * n_road :]  # after the road and its rate
+    recorded = np.column_stack([result[force] for force in forces])
     exogenous = exogenous_table(road, time_s, np.vstack([recorded, recorded[-1:]]))
     count = time_s.size
-    mapped = energy_function().map(count)
+    mapped = energy_function(name).map(count)
     _, parts, inputs, losses, elastic = (
         np.asarray(v, dtype=float)
-        for v in mapped(states.T, commands, exogenous.T, np.zeros((4, count)), params)
+        for v in mapped(states.T, commands, exogenous.T, np.zeros((n_road, count)), params)
     )
     powers = np.vstack([inputs, losses])
     steps = np.diff(time_s)
     integrals = ((powers[:, 1:] + powers[:, :-1]) / 2 * steps).sum(axis=1)
-    displacement = np.diff(exogenous[:, 0:4], axis=0).T
+    displacement = np.diff(exogenous[:, 0:n_road], axis=0).T
     integrals[0] += ((elastic[:, 1:] + elastic[:, :-1]) / 2 * displacement).sum()
     duration = float(time_s[-1] - time_s[0])
-    return _balance(duration, "ROS2 rows, trapezoid", parts[:, 0], parts[:, -1], integrals)
+    return _balance(duration, "ROS2 rows, trapezoid", parts[:, 0], parts[:, -1], integrals, name)

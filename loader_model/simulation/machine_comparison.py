@@ -75,7 +75,7 @@ def compare_controllers(
         Speed of the paper's course when ``course`` is None.
     course : Course, optional
         Another course (:mod:`~loader_model.simulation.courses`).
-    settings : ControllerSettings or path, optional
+    settings : ControllerSettings, str or pathlib.Path, optional
         The skyhook's settings (default Table 3's); with them the row is ``skyhook (designed)``.
     substeps : int, optional
         ROS2 steps per period (default the simulator's).

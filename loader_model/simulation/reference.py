@@ -4,7 +4,8 @@ Same plant, same controller at the same instants and zero-order hold, same road 
 inside each period); only the integration differs: CVODES (BDF, Newton with the AD Jacobian) at
 ``rtol`` 1e-10 per period, restarted at each period so that the command's steps are exact. Slow
 (seconds per simulated second): a check of :func:`~loader_model.simulation.simulator.simulate`,
-not a tool.
+not a tool. Any described machine (:mod:`loader_model.machines`; default the skid-steer): its
+plant Function, its sizes and names (:func:`~loader_model.plant.layout.plant_layout`).
 """
 
 from __future__ import annotations
@@ -14,8 +15,10 @@ from collections.abc import Sequence
 import casadi as ca
 import numpy as np
 
+from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
 from loader_model.plant.equilibrium import static_state
-from loader_model.plant.plant import EXOGENOUS_NAMES, OUTPUT_NAMES, STATE_NAMES, plant_function
+from loader_model.plant.layout import plant_layout
+from loader_model.plant.plant import plant_function
 from loader_model.simulation.controllers import (
     CONTROLLER_PERIOD_S,
     check_controller,
@@ -27,10 +30,13 @@ from loader_model.simulation.travel import RoadInput
 __all__ = ["reference_simulation"]
 
 
-def _period_integrator(period_s: float, npar: int, rtol: float, atol: float) -> ca.Function:
-    plant = plant_function()
-    nw = len(EXOGENOUS_NAMES)
-    x = ca.SX.sym("x", len(STATE_NAMES))
+def _period_integrator(
+    period_s: float, npar: int, rtol: float, atol: float, machine: str = DEFAULT_MACHINE
+) -> ca.Function:
+    layout = plant_layout(machine)
+    plant = plant_function(machine)
+    nw = len(layout.exogenous_names)
+    x = ca.SX.sym("x", len(layout.state_names))
     t = ca.SX.sym("t")
     p = ca.SX.sym("p", 1 + 2 * nw + npar)
     u, w0, w1, params = p[0], p[1 : 1 + nw], p[1 + nw : 1 + 2 * nw], p[1 + 2 * nw :]
@@ -51,24 +57,55 @@ def reference_simulation(
     period_s: float = CONTROLLER_PERIOD_S,
     rtol: float = 1e-10,
     atol: float = 1e-12,
+    machine: str = DEFAULT_MACHINE,
 ) -> dict[str, np.ndarray]:
-    """Reference run (module notes); returns ``time``, ``x`` (N, 15), ``y`` (N, 19), ``u`` (N,).
+    """Reference run (module notes); returns ``time``, ``x`` (N, n_x), ``y`` (N, n_y), ``u`` (N,).
 
     Rows at the controller's instants t_k = k h, k = 0 .. N − 1, as in
     :func:`~loader_model.simulation.simulator.simulate`, whose arguments ``controller``,
-    ``settings`` and ``controller_state`` (z_0, default zeros) these are.
+    ``settings`` and ``controller_state`` (z_0, default zeros) these are. The run starts at the
+    static state of ``params`` with its holding command (the skid-steer: x (N, 15), y (N, 19)).
+
+    Parameters
+    ----------
+    road : RoadInput
+        Road table (:func:`~loader_model.simulation.simulator.course_input`).
+    params : array_like
+        The machine's plant parameter vector (:func:`~loader_model.plant.layout.plant_layout`).
+    controller : casadi.Function, optional
+        ``controller(z, y, settings) -> (z_next, u)`` on the machine's outputs; default: the
+        pump holds the static command.
+    settings, controller_state : sequence of float
+        The controller's settings vector and its start z_0 (default zeros).
+    duration_s : float, optional
+        Simulated time (default: the road table's).
+    period_s : float
+        The controller's period, s.
+    rtol, atol : float
+        CVODES tolerances.
+    machine : str
+        A machine name or description file (default the skid-steer).
 
     Raises
     ------
+    ValueError
+        If ``params`` does not have the machine's number of parameters.
     SimulationError
         If CVODES fails in a period (naming its start time and the state there).
     """
+    name = resolve_machine_name(machine)
+    layout = plant_layout(name)
     params = np.asarray(params, dtype=float).ravel()
-    x, u_previous = static_state(params)
+    if params.size != len(layout.parameter_names):
+        raise ValueError(
+            f"params must have the {len(layout.parameter_names)} plant parameters of machine "
+            f"{name!r}; got {params.size}"
+        )
+    x, u_previous = static_state(params, name)
     if controller is None:
-        controller, settings = hold_command_controller(), (u_previous,)
-    controller = check_controller(controller)
-    plant = plant_function()
+        controller, settings = hold_command_controller(name), (u_previous,)
+    controller = check_controller(controller, name)
+    plant = plant_function(name)
     z = (
         np.zeros(controller.size1_in(0))
         if controller_state is None
@@ -79,9 +116,9 @@ def reference_simulation(
     count = int(np.floor(total_s / period_s + 1e-9))
     time_s = np.arange(count + 1) * period_s
     exogenous = exogenous_table(road, time_s)
-    integrator = _period_integrator(period_s, params.size, rtol, atol)
-    states = np.empty((count, len(STATE_NAMES)))
-    outputs = np.empty((count, len(OUTPUT_NAMES)))
+    integrator = _period_integrator(period_s, params.size, rtol, atol, name)
+    states = np.empty((count, len(layout.state_names)))
+    outputs = np.empty((count, len(layout.output_names)))
     commands = np.empty(count)
     for k in range(count):
         _, y = plant(x, u_previous, exogenous[k], params)
@@ -92,7 +129,7 @@ def reference_simulation(
         try:
             x = np.asarray(integrator(x0=x, p=parameters)["xf"]).ravel()
         except RuntimeError as error:
-            named = ", ".join(f"{n}={v:.6g}" for n, v in zip(STATE_NAMES, x, strict=True))
+            named = ", ".join(f"{n}={v:.6g}" for n, v in zip(layout.state_names, x, strict=True))
             raise SimulationError(
                 f"CVODES failed in the period starting at t = {k * period_s:.4f} s "
                 f"({error}); state: {named}"

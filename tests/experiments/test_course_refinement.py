@@ -1,4 +1,5 @@
-"""Second design mode (issue 11): K_fb refined on the nonlinear paper course."""
+"""Second design mode (issue 11): K_fb refined on the nonlinear paper course, for the skid-steer
+and for another described machine (issue 23)."""
 
 from __future__ import annotations
 
@@ -51,3 +52,62 @@ def test_the_shipped_refined_gains_still_help_on_the_current_model() -> None:
     optimum = course_cost(optimise_gain(plants)["gain"])
     shipped = course_cost(gain)
     assert sum(a**2 for a in shipped.values()) < sum(a**2 for a in optimum.values())
+
+
+WHEEL_LOADER = "compact_wheel_loader"
+
+
+def _wheel_loader_plants() -> dict:
+    from loader_model.plant.scenario import resolve_plant
+
+    return {load: resolve_plant(None, load, machine=WHEEL_LOADER) for load in ("empty", "full")}
+
+
+def test_wheel_loader_refinement_on_a_short_course_lowers_its_cost() -> None:
+    """From the wheel loader's linear optimum on both loads, whose k_θ is beyond the settings
+    file's ±100 (the norms are scaled to carry it), a few evaluations over the course's first
+    3 s (the front axle over the first board) lower Σ a_total², stay stable with the margin and
+    report the a_total that an independent drive of the refined gains gives."""
+    params = _wheel_loader_plants()
+    plants = comfort_plants(("empty", "full"), params=params)
+    start = optimise_gain(plants)["gain"]
+    assert np.max(np.abs(start)) > 100.0  # the case the norm scaling is for
+    result = refine_on_course(
+        start, machine=WHEEL_LOADER, max_evaluations=6, progress=False, duration_s=3.0
+    )
+    assert result["refused"] < result["evaluations"] <= 6
+    assert result["cost"] < result["start_cost"]
+    assert min(e.margin for e in evaluate_gain(plants, result["gain"])) >= DEFAULT_MARGIN
+    again = course_cost(result["gain"], params=params, machine=WHEEL_LOADER, duration_s=3.0)
+    for load, total in again.items():
+        assert total == pytest.approx(result["a_total"][load], rel=1e-12)
+    # the start's drives are the machine's: its shipped plants give the same a_total
+    shipped = course_cost(start, machine=WHEEL_LOADER, duration_s=3.0)
+    assert shipped == pytest.approx(result["start_a_total"], rel=1e-12)
+
+
+def test_the_skid_steer_keeps_the_settings_file_range() -> None:
+    """The same start is out of the skid-steer's ±100 (its gains are written unscaled): refused
+    before any drive."""
+    start = (10.5, -54.4, 211.4, 39.0)
+    with pytest.raises(ValueError, match="leaves the range of machine 'skid_steer'"):
+        refine_on_course(start, loads=("empty",), max_evaluations=3, progress=False)
+
+
+def test_a_gain_beyond_the_scaled_norms_is_refused_for_the_wheel_loader() -> None:
+    """k_φ = 5000 would need an angle norm below its validated 0.01 rad: refused, not driven."""
+    with pytest.raises(ValueError, match="leaves the range of machine 'compact_wheel_loader'"):
+        refine_on_course(
+            (10.5, -54.4, 211.4, 5000.0),
+            machine=WHEEL_LOADER,
+            max_evaluations=3,
+            progress=False,
+        )
+
+
+def test_a_plant_of_another_machine_is_refused_naming_the_load() -> None:
+    from loader_model.plant.scenario import resolve_plant
+
+    skid_steer = {"full": resolve_plant(None, "full")}
+    with pytest.raises(ValueError, match=r"params\['full'\] is a plant of machine 'skid_steer'"):
+        course_cost((2.75, 5.1, -4.0, 0.22), ("full",), params=skid_steer, machine=WHEEL_LOADER)

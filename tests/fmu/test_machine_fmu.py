@@ -18,6 +18,7 @@ from loader_model.plant.scenario import resolve_plant
 
 fmpy = pytest.importorskip("fmpy")
 fmi2 = pytest.importorskip("fmpy.fmi2")
+validate_fmu = pytest.importorskip("fmpy.validation").validate_fmu
 
 MACHINE = "compact_wheel_loader"
 #: |FMU derivative − plant Function derivative| <= RTOL × (|plant's| + its state's nominal).
@@ -80,13 +81,72 @@ def test_wheel_loader_fmu_derivatives_equal_the_plant_function(tmp_path: Path) -
     assert time.perf_counter() - started < 60.0
 
 
-def test_wheel_loader_fmu_refuses_a_controller(
+@pytest.mark.parametrize(
+    "controller",
+    [
+        "skyhook",  # four filter states, all five named sensors
+        pytest.param("virtual_accumulator", marks=pytest.mark.slow),
+    ],
+)
+def test_wheel_loader_closed_loop_fmu_reproduces_the_sampled_loop(
+    controller: str, tmp_path: Path
+) -> None:
+    """The controller in the FMU against the simulator's settings and its discrete loop."""
+    from loader_model.fmu.build import export_plant_fmu
+    from loader_model.fmu.crosscheck import cross_check
+    from loader_model.simulation.scenario import ride_scenario
+
+    plant = resolve_plant(None, "full", machine=MACHINE)
+    # the simulator's settings vector of this controller on this plant (its ‖p_A‖∞ and u0)
+    settings = ride_scenario(plant, controller.replace("_", "-")).settings
+    path = export_plant_fmu(
+        tmp_path / "loop.fmu",
+        plant.params,
+        controller=controller,
+        settings=settings,
+        include_sources=False,
+        machine=MACHINE,
+    )
+    assert validate_fmu(str(path)) == []
+    md = fmpy.read_model_description(str(path))
+    command = next(v for v in md.modelVariables if v.name == "V_p_ref")
+    assert (command.causality, command.variability) == ("output", "discrete")
+    inputs = [v.name for v in md.modelVariables if v.causality == "input"]
+    assert inputs == list(plant_layout(MACHINE).exogenous_names)
+    check = cross_check(
+        path, plant.params, controller=controller, settings=settings, machine=MACHINE
+    )
+    # the skid-steer's acceptance (issue 15): 1e-3 of each signal's excursion
+    for name in ("f_Sx", "f_Sy", "p_A", "p_B", "phi", "V_p_ref"):
+        assert check.relative_error[name] < 1e-3, (name, check.relative_error)
+    # the loop acts: the command leaves the holding command by more than round-off
+    excursion = np.ptp(check.reference["V_p_ref"])
+    assert excursion > 1e-3 * abs(plant.u0), excursion
+
+
+def test_wheel_loader_closed_loop_fmu_from_the_command(
     tmp_path: Path, capsys: pytest.CaptureFixture
 ) -> None:
-    argv = ["export-fmu", "--machine", MACHINE, "--controller", "skyhook", str(tmp_path / "c.fmu")]
-    assert cli.main(argv) == 2
-    assert "skid-steer only" in capsys.readouterr().err
-    assert not list(tmp_path.iterdir())
+    target = tmp_path / "wl_skyhook.fmu"
+    argv = ["export-fmu", "--machine", MACHINE, "--load", "full", "--controller", "skyhook"]
+    assert cli.main([*argv, "--no-sources", str(target)]) == 0
+    assert "compact_wheel_loader plant + skyhook controller" in capsys.readouterr().out
+    md = fmpy.read_model_description(str(target), validate=True)
+    names = [v.name for v in md.modelVariables]
+    assert "controller.k_x" in names and "x.theta_3" in names
+    states = [v.name for v in md.modelVariables if v.name.startswith("controller.z_")]
+    assert states, names
+
+
+def test_export_fmu_settings_without_a_reading_controller_exits_2(
+    tmp_path: Path, capsys: pytest.CaptureFixture
+) -> None:
+    settings = tmp_path / "gains.toml"
+    settings.write_text("")
+    argv = ["export-fmu", "--machine", MACHINE, "--settings", str(settings)]
+    assert cli.main([*argv, str(tmp_path / "x.fmu")]) == 2
+    assert "--controller none reads no settings" in capsys.readouterr().err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["gains.toml"]
 
 
 def test_wheel_loader_fmu_reproduces_cvodes_on_its_plant_function(tmp_path: Path) -> None:
@@ -98,3 +158,18 @@ def test_wheel_loader_fmu_reproduces_cvodes_on_its_plant_function(tmp_path: Path
     result = cross_check(path, params, machine=MACHINE)
     # the skid-steer's acceptance (issue 15): 1e-3 of each signal's excursion (measured ~6e-6)
     assert max(result.relative_error.values()) < 1e-3, result.relative_error
+
+
+def test_wheel_loader_closed_loop_fmu_takes_a_settings_file(tmp_path: Path) -> None:
+    from loader_model.control.settings import default_settings, save_settings, with_gains
+
+    gains = (1.5, -2.5, 3.5, 0.25)
+    settings = tmp_path / "designed.toml"
+    save_settings(with_gains(default_settings(), gains, "test gains"), settings)
+    target = tmp_path / "designed.fmu"
+    argv = ["export-fmu", "--machine", MACHINE, "--controller", "skyhook", "--no-sources"]
+    assert cli.main([*argv, "--settings", str(settings), str(target)]) == 0
+    md = fmpy.read_model_description(str(target))
+    start = {v.name: v.start for v in md.modelVariables}
+    got = [float(start[f"controller.k_{name}"]) for name in ("x", "y", "theta", "phi")]
+    assert got == list(gains)
