@@ -11,6 +11,8 @@
   limits (constraint generation over every path sample).
 - :mod:`~loader_model.bound.pump_sizing`: the constrained bound and a controller against pump
   size.
+- :mod:`~loader_model.bound.preview`: LQ control with road preview on the linear bound's plant
+  and cost; :mod:`~loader_model.bound.preview_report` runs it at 1 kHz and sweeps the preview.
 - :mod:`~loader_model.bound.nonlinear`: multiple shooting on the simulator's own step, IPOPT.
 - :mod:`~loader_model.bound.replay`: a controller that plays a command table back, and the
   replay through the simulator.
