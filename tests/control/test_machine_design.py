@@ -5,6 +5,7 @@ course refinement of ``design --method refine`` on it."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from loader_model.control.comfort_design import comfort_plants, evaluate_gain
 from loader_model.control.controllers import controller_function
@@ -73,6 +74,7 @@ def _printed_course_totals(text: str, row: str) -> dict[str, float]:
     return {shown[i].rstrip(":"): float(shown[i + 1]) for i in range(0, len(shown), 2)}
 
 
+@pytest.mark.slow  # 5 s; the library test of the wheel loader refinement stays fast
 def test_design_refine_on_the_wheel_loader_writes_settings_that_drive_as_printed(
     tmp_path, capsys
 ) -> None:

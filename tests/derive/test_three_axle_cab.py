@@ -19,6 +19,9 @@ from scipy.integrate import solve_ivp
 
 from tests.derive.three_axle_cab import DESCRIPTION, POINTS, VALUES
 
+#: Deriving the fixture takes about 10 s with SymPy; the shipped machines' checks stay fast.
+pytestmark = pytest.mark.slow
+
 PACKAGE = "three_axle_cab_fixture"
 N = 5  # x_H, y_H, θ1, θ2, s_cab
 AXLES = ("A", "B", "R")

@@ -160,6 +160,7 @@ def test_without_the_chassis_columns_the_residual_is_kilonewtons(
     assert at_rest.fit.s > 500.0  # measured 1.26 kN
 
 
+@pytest.mark.slow  # 12 s plus a 5 s cvodes record; the Eq. 44 regressions stay fast on their own
 def test_noise_free_friction_test_through_the_filters(clean_test: SyntheticRecording) -> None:
     result = identify_friction(prepare_signals(clean_test.record, SHAFT_SPEED), clean_test.cylinder)
     assert np.all(_relative(result.fit.values) < FILTER_TOLERANCE)

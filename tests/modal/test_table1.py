@@ -69,6 +69,7 @@ def test_modes_command_prints_table_side_by_side(capsys: pytest.CaptureFixture[s
     assert "MAC M·φ" in out and "Momentum shapes" in out and "Displacement shapes" in out
 
 
+@pytest.mark.slow  # 9 s (a whole calibration run)
 def test_calibrate_writes_nothing_when_targets_are_missed(tmp_path, capsys) -> None:
     """A 2 t boom cannot reproduce Table 1 with the free parameters: no file is written."""
     heavy = replace(default_loader(), {"boom.mass": 2000.0})

@@ -63,6 +63,7 @@ DESIGNED = STUDY.replace("samples = 2", "samples = 1").replace(
 )
 
 
+@pytest.mark.slow  # 4 s; the designed-gains study run stays fast
 def test_wheel_loader_designed_gains_are_the_machines_design() -> None:
     """The study's designed gains are those of ``design --machine`` on the same comfort plants."""
     from loader_model.control.comfort_design import comfort_plants
@@ -106,6 +107,7 @@ def test_wheel_loader_study_runs_designed_gains(tmp_path: Path) -> None:
     print({n: (round(r["a_total"], 4), round(r["max_pole_real"], 3)) for n, r in by_name.items()})
 
 
+@pytest.mark.slow  # 3 s
 def test_wheel_loader_robust_gains_are_designed_on_its_sampled_plants() -> None:
     """``robust``: the optimisation over plants drawn from the wheel loader's distributions
     (its flat file's paths), stable on them; not its nominal design."""

@@ -107,6 +107,7 @@ def test_reference_refuses_a_parameter_vector_of_another_machine() -> None:
         reference_simulation(road, skid_steer.params, duration_s=0.01, machine=MACHINE)
 
 
+@pytest.mark.slow  # 3 s; the skid-steer's balance tests stay fast
 def test_passive_run_balances_its_energy() -> None:
     """Road work + pump work + charge-line work = dissipation + ΔE over the first board (passive:
     the accumulator connected, the pump holding u0), by CVODES with the integrals as states; the
@@ -124,6 +125,7 @@ def test_passive_run_balances_its_energy() -> None:
     assert balance.relative_residual < 1e-6
 
 
+@pytest.mark.slow  # 3 s
 def test_simulated_passive_run_balances_its_energy_to_its_integration_error() -> None:
     """The same balance from the simulator's 1 ms rows (trapezoid): its residual is the ROS2
     integration's, held to 1 % of the largest term (the skid-steer's acceptance), and its road
