@@ -51,6 +51,7 @@ def test_friction_update_writes_the_identified_values_with_their_source(
     assert "wrote" in capsys.readouterr().out
 
 
+@pytest.mark.slow  # 5 s (a whole identification run before the refusal)
 def test_friction_update_out_of_range_is_refused_and_writes_nothing(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:

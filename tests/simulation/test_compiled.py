@@ -109,6 +109,7 @@ def test_the_simulator_falls_back_to_the_sx_graph_without_a_compiler(tmp_path, m
     assert backend == "sx" and period.name() == "closed_loop_period"
 
 
+@pytest.mark.slow  # 5 s (compiles two periods)
 def test_plants_with_different_static_commands_share_one_compiled_period(tmp_path, monkeypatch):
     """The default hold controller takes u0 as a setting: varied plants compile nothing new."""
     from loader_model.plant.plant_parameters import PLANT_PARAMETER_NAMES, plant_parameter_vector

@@ -61,7 +61,7 @@ def _seat_signals(y: np.ndarray, names: tuple[str, ...]) -> np.ndarray:
     return y[:, index]
 
 
-@pytest.mark.parametrize("controller", ["passive", "skyhook"])
+@pytest.mark.parametrize("controller", ["passive", pytest.param("skyhook", marks=pytest.mark.slow)])
 def test_course_matches_the_cvodes_reference_over_the_first_board(controller: str) -> None:
     """The simulator (ROS2, 4 substeps) against CVODES at rtol 1e-10 over the first 3 s (the
     front axle over the first board), full bucket: the seat-pad and pitch signals and the pump

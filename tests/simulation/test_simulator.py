@@ -103,12 +103,16 @@ def test_baseline_matches_the_cvodes_reference_on_the_paper_course() -> None:
     _compare("empty", passive=False, duration_s=None, substeps=BASELINE_SUBSTEPS)
 
 
-@pytest.mark.parametrize("load", ["empty", "full"])
+@pytest.mark.parametrize(
+    "load",
+    ["empty", pytest.param("full", marks=pytest.mark.slow)],  # 5 s; the course is slow too
+)
 def test_passive_matches_the_cvodes_reference_over_the_first_boards(load: str) -> None:
     """Accumulator connected (passive ride control), first 6 s (three boards)."""
     _compare(load, passive=True, duration_s=6.0)
 
 
+@pytest.mark.slow  # 6 s; the empty bucket's first boards stay fast
 def test_full_bucket_matches_the_cvodes_reference_over_the_first_boards() -> None:
     """Baseline controller, full bucket, first 6 s (three boards); whole course: slow test."""
     _compare("full", passive=False, duration_s=6.0, substeps=BASELINE_SUBSTEPS)
@@ -120,7 +124,10 @@ def test_full_bucket_matches_the_cvodes_reference_on_the_paper_course() -> None:
     _compare("full", passive=False, duration_s=None, substeps=BASELINE_SUBSTEPS)
 
 
-@pytest.mark.parametrize("controller", ["virtual-accumulator", "skyhook"])
+@pytest.mark.parametrize(
+    "controller",
+    [pytest.param("virtual-accumulator", marks=pytest.mark.slow), "skyhook"],  # 5 s
+)
 def test_active_controllers_match_the_cvodes_reference_over_the_first_boards(
     controller: str,
 ) -> None:
