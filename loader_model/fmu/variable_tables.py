@@ -5,7 +5,8 @@ The names are the skid-steer's; another machine's further names get theirs from 
 
 from __future__ import annotations
 
-from loader_model.plant.plant import EXOGENOUS_NAMES
+from loader_model.plant.plant import EXOGENOUS_NAMES, STATE_NAMES
+from loader_model.simulation.result import COLUMN_UNITS
 
 __all__: list[str] = []
 
@@ -14,25 +15,8 @@ _EXOGENOUS_UNITS = dict.fromkeys(EXOGENOUS_NAMES[0:4], "m") | dict.fromkeys(
 )
 _EXOGENOUS_UNITS |= {"F_dx": "N", "F_dy": "N", "M_d": "N*m"}
 _AXLE = {"A": "front axle A", "B": "rear axle B"}
-_STATE_UNITS = {
-    "x_H": "m",
-    "y_H": "m",
-    "theta_1": "rad",
-    "theta_2": "rad",
-    "xd_H": "m/s",
-    "yd_H": "m/s",
-    "thetad_1": "rad/s",
-    "thetad_2": "rad/s",
-    "xi_A": "m",
-    "xi_B": "m",
-    "p_A": "Pa",
-    "p_B": "Pa",
-    "V_p": "m^3/rev",
-    "Vd_p": "m^3/(rev*s)",
-    "V_acc": "m^3",
-    **{name: "m" for name in ("u_Px", "u_Ox", "u_Py", "u_Oy")},
-    **{name: "m/s" for name in ("ud_Px", "ud_Ox", "ud_Py", "ud_Oy")},
-}
+#: Units of the states: the simulation's column table, the one place that gives them.
+_STATE_UNITS = {name: COLUMN_UNITS[name] for name in STATE_NAMES}
 _STATE_DESCRIPTIONS = {
     "x_H": "chassis centre of gravity H, forward, from static equilibrium",
     "y_H": "chassis centre of gravity H, up, from static equilibrium",
