@@ -10,30 +10,8 @@ import pytest
 from loader_model.bound.condensed import condense
 from loader_model.bound.constrained import path_limits, solve_constrained_bound
 from loader_model.bound.linear import evaluate, linear_quadratic, solve_linear_bound
-from loader_model.bound.problem import bound_problem
-from loader_model.plant.scenario import PlantScenario, resolve_plant
-from loader_model.simulation.courses import Course
-from loader_model.simulation.roads import board_course
 from loader_model.simulation.scenario import closed_loop
-from loader_model.simulation.simulator import course_input, simulate
-
-
-@pytest.fixture(scope="module")
-def plant() -> PlantScenario:
-    return resolve_plant(None, "empty")
-
-
-@pytest.fixture(scope="module")
-def road(plant):
-    course = Course(
-        board_course(1, height_m=0.005, width_m=0.14, spacing_m=0.0), 2.5, -0.3, 2.0, ""
-    )
-    return course_input(course, plant)
-
-
-@pytest.fixture(scope="module")
-def problem(plant, road):
-    return bound_problem(plant, road, duration_s=3.0)
+from loader_model.simulation.simulator import simulate
 
 
 @pytest.fixture(scope="module")

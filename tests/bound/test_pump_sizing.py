@@ -11,24 +11,7 @@ from loader_model.bound.pump_sizing import (
     scaled_plant,
     write_csv,
 )
-from loader_model.plant.scenario import PlantScenario, resolve_plant
-from loader_model.simulation.courses import Course
-from loader_model.simulation.roads import board_course
 from loader_model.simulation.scenario import ride_scenario
-from loader_model.simulation.simulator import course_input
-
-
-@pytest.fixture(scope="module")
-def plant() -> PlantScenario:
-    return resolve_plant(None, "empty")
-
-
-@pytest.fixture(scope="module")
-def road(plant):
-    course = Course(
-        board_course(1, height_m=0.005, width_m=0.14, spacing_m=0.0), 2.5, -0.3, 2.0, ""
-    )
-    return course_input(course, plant)
 
 
 def test_scaled_plant_scales_one_parameter(plant):
