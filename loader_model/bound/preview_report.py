@@ -183,7 +183,8 @@ class PreviewSweep:
         for values in zip(
             self.preview_m, self.linear, self.simulated, self.peak_command, strict=True
         ):
-            lines.append(f"{values[0]:>7.2f}{values[1]:>15.4f}{values[2]:>11.4f}{values[3]:>12.2f}")
+            simulated = "not run" if np.isnan(values[2]) else f"{values[2]:.4f}"
+            lines.append(f"{values[0]:>7.2f}{values[1]:>15.4f}{simulated:>11}{values[3]:>12.2f}")
         lines.append(f"{'non-causal LQ bound (linear plant)':<38}{self.bound_m_s2:.4f}")
         lines.append(f"{'plain LQR, no preview (linear plant)':<38}{self.lqr_m_s2:.4f}")
         lines.extend(
