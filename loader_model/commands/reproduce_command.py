@@ -60,6 +60,7 @@ def run(args: argparse.Namespace) -> int:
     from loader_model.bound.table6 import render_markdown
     from loader_model.experiments.report import ReportOptions, markdown_table, write_report
     from loader_model.experiments.reproduction import build_reproduction
+    from loader_model.experiments.table6 import best_reductions
     from loader_model.io.interrupts import keeping
 
     if args.jobs < 1 or args.jobs > max(os.cpu_count() or 1, 1) * 4:
@@ -74,7 +75,7 @@ def run(args: argparse.Namespace) -> int:
         jobs=args.jobs,
         progress=not args.no_progress,
         envelope=args.envelope,
-        appendix=(render_markdown(),),
+        appendix=(lambda cells: render_markdown(reductions=best_reductions(cells)),),
     )
     summary: dict = {}
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 import csv
 import secrets
 import shutil
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -38,7 +38,9 @@ FIDELITY_POINTS = 10.0
 class ReportOptions:
     """What the report runs: trials per cell, base seed, worker processes, progress bar, the
     tyres' envelope, and ``appendix``: Markdown sections from the layers above (the bound of
-    :mod:`loader_model.bound`, which the experiments do not import), placed before the timings."""
+    :mod:`loader_model.bound`, which the experiments do not import), placed before the timings;
+    a section may be a callable of the Table 6 cells (:class:`~loader_model.experiments.table6.
+    Table6Cell`) that returns the Markdown, to set the trials' results beside its own."""
 
     trials: int = 4
     seed: int = 0
@@ -46,7 +48,7 @@ class ReportOptions:
     progress: bool = True
     duration_s: float | None = None
     envelope: str = "tandem-cam"
-    appendix: tuple[str, ...] = ()
+    appendix: tuple[str | Callable[[Sequence[Table6Cell]], str], ...] = ()
 
 
 def table6_rows(cells: list[Table6Cell]) -> Rows:

@@ -187,8 +187,18 @@ def build_reproduction(folder: Path, options: ReportOptions) -> dict[str, object
     timings["total"] = time.perf_counter() - start
     within = sum(c.within <= FIDELITY_POINTS for c in paper_cells)
     lifts = np.mean([o.lift_offs for o in outcomes])
+    appendix = tuple(
+        section(cells) if callable(section) else section for section in options.appendix
+    )
     text = _markdown(
-        options, tables, within, len(paper_cells), float(lifts), timings, (budget_text, budget)
+        options,
+        tables,
+        within,
+        len(paper_cells),
+        float(lifts),
+        timings,
+        (budget_text, budget),
+        appendix,
     )
     (folder / "report.md").write_text(text, encoding="utf-8")
     return {
@@ -200,7 +210,7 @@ def build_reproduction(folder: Path, options: ReportOptions) -> dict[str, object
     }
 
 
-def _markdown(options, tables, within, count, lifts, timings, budget) -> str:
+def _markdown(options, tables, within, count, lifts, timings, budget, appendix) -> str:
     from loader_model.experiments.discrepancies import discrepancy_section
     from loader_model.experiments.machine_report import machine_section
 
@@ -258,7 +268,7 @@ def _markdown(options, tables, within, count, lifts, timings, budget) -> str:
         "test; the 18 km/h rows are.\n",
         markdown_table(tables["designed"]) + "\n",
         discrepancy_section(tables, within, count, lifts, budget[1]),
-        *(section + "\n" for section in options.appendix),
+        *(section + "\n" for section in appendix),
         machine_section(tables),
         "## Timings (this run)\n",
         markdown_table([["stage", "wall time [s]"]] + [[k, f"{v:.1f}"] for k, v in timings.items()])

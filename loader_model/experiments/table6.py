@@ -24,6 +24,7 @@ __all__ = [
     "PAPER_TABLE_6",
     "SPEED_LABELS",
     "Table6Cell",
+    "best_reductions",
     "run_trials",
     "table6_cells",
 ]
@@ -178,3 +179,29 @@ def table6_cells(outcomes: Sequence[TrialOutcome]) -> list[Table6Cell]:
             )
         )
     return cells
+
+
+def best_reductions(cells: Sequence[Table6Cell]) -> dict[str, dict[str, tuple[str, float]]]:
+    """The largest reduction of a_total per condition, measured (the paper) and simulated.
+
+    Returns
+    -------
+    dict
+        ``"9 km/h empty"`` (the condition names of the bound's result file) → ``"measured"``:
+        (controller, change in %) of the paper's best controller in Table 6, and
+        ``"simulated"``: the best of the cells' controllers (the mean change against the
+        baseline, Eq. 50).
+    """
+    best: dict[str, dict[str, tuple[str, float]]] = {}
+    for cell in cells:
+        found = best.setdefault(f"{cell.speed_kmh:g} km/h {cell.load}", {})
+        change = cell.model.change_percent
+        if np.isfinite(change) and ("simulated" not in found or change < found["simulated"][1]):
+            found["simulated"] = (cell.controller, float(change))
+        paper = PAPER_TABLE_6.get(
+            (SPEED_LABELS.get(cell.speed_kmh, "?"), LOAD_LABELS.get(cell.load, "?"))
+        )
+        if paper and "measured" not in found:
+            controller, (measured, _) = min(paper.items(), key=lambda item: item[1][0])
+            found["measured"] = (controller, measured)
+    return best

@@ -144,3 +144,37 @@ def test_a_designed_controller_runs_the_skyhook_with_its_gains() -> None:
     )
     with pytest.raises(ValueError, match="needs its gains"):
         controller_arguments("skyhook-lqr", "empty", params)
+
+
+def test_best_reductions_pick_the_largest_reduction_per_condition():
+    """The paper's best controller per condition comes from Table 6 as printed, the model's
+    from the cells' mean changes; a NaN change (failed trials) is never the best."""
+    import math
+
+    from loader_model.experiments.statistics import Comparison
+    from loader_model.experiments.table6 import Table6Cell, best_reductions
+
+    def cell(speed: float, load: str, controller: str, change: float) -> Table6Cell:
+        model = Comparison(
+            change_percent=change, low_percent=change, high_percent=change, p_value=0.5
+        )
+        return Table6Cell(speed, load, controller, model, math.nan, math.nan)
+
+    best = best_reductions(
+        [
+            cell(9.0, "empty", "skyhook", -2.5),
+            cell(9.0, "empty", "skyhook-refined", -38.4),
+            cell(9.0, "empty", "passive", math.nan),
+            cell(18.0, "full", "passive", -20.3),
+            cell(18.0, "full", "skyhook", -4.7),
+        ]
+    )
+    assert best["9 km/h empty"] == {
+        "simulated": ("skyhook-refined", -38.4),
+        "measured": ("skyhook", -33.6),
+    }
+    assert best["18 km/h full"] == {
+        "simulated": ("passive", -20.3),
+        "measured": ("virtual-accumulator", -16.1),
+    }
+    assert set(best) == {"9 km/h empty", "18 km/h full"}

@@ -41,4 +41,5 @@ def test_reproduce_writes_a_complete_report(tmp_path: Path, capsys) -> None:
     assert "A second machine: the compact wheel loader" in text
     assert "Fidelity budget: one modelling step at a time" in text
     assert "The bound: what the pump could do" in text
+    assert "best simulated Δ [%] (model)" in text and "the linear plant's bound is not" in text
     assert "within 10 percentage points" in capsys.readouterr().out
