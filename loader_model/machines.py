@@ -209,14 +209,6 @@ def _register_external(path: Path, name: str) -> str:
     """Import the generated package beside ``path`` under a unique module name (module notes)."""
     folder = generated_folder(path)
     wanted = description_hash(path)
-    known = _EXTERNAL.get(name)
-    if known is not None:
-        if known[0] != path.resolve() or known[2] != wanted:
-            raise ValueError(
-                f"{path}: machine {name!r} is already loaded from {known[0]} in this process; "
-                "give the description another [machine] name"
-            )
-        return name
     init = folder / "__init__.py"
     if not init.is_file():
         raise ValueError(
@@ -230,6 +222,19 @@ def _register_external(path: Path, name: str) -> str:
             f"description (its DESCRIPTION_HASH is not {wanted}); derive it again with "
             f"`{_derive_command(path)}`"
         )
+    known = _EXTERNAL.get(name)
+    if known is not None:
+        if known[0] == path.resolve() and known[2] != wanted:
+            raise ValueError(
+                f"{path}: the description of machine {name!r} changed since this process "
+                "loaded it; start a new process to use the new version"
+            )
+        if known[0] != path.resolve():
+            raise ValueError(
+                f"{path}: machine {name!r} is already loaded from {known[0]} in this process; "
+                "give the description another [machine] name"
+            )
+        return name
     module_name = f"{_EXTERNAL_PREFIX}{name}_{wanted.removeprefix('sha256:')[:12]}"
     spec = importlib.util.spec_from_file_location(
         module_name, init, submodule_search_locations=[str(folder)]
@@ -348,7 +353,6 @@ def _structure(raw: dict[str, Any]) -> dict[str, Any]:
     }
 
 
-@functools.cache
 def machine(source: str | os.PathLike[str] = DEFAULT_MACHINE) -> MachineInfo:
     """The registry entry of a generated machine, by name or description file.
 
@@ -363,9 +367,14 @@ def machine(source: str | os.PathLike[str] = DEFAULT_MACHINE) -> MachineInfo:
     ValueError
         See :func:`resolve_machine_name`.
     """
-    name = resolve_machine_name(source) if not isinstance(source, str) else source
-    if name not in list_machines() and name not in _EXTERNAL:
-        name = resolve_machine_name(name)
+    name = source if source in _EXTERNAL or source in list_machines() else None
+    # a file is resolved (read and hashed) on every call, so an edit after loading is refused
+    return _machine(name if name is not None else resolve_machine_name(source))
+
+
+@functools.cache
+def _machine(name: str) -> MachineInfo:
+    """The registry entry of the resolved machine ``name`` (built once per process)."""
     if name in _EXTERNAL:
         path, package, _ = _EXTERNAL[name]
     else:
