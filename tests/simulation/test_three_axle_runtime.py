@@ -163,15 +163,18 @@ def test_simulator_agrees_with_the_cvodes_reference(plant, board_run) -> None:
 
 
 def test_simulate_command_takes_the_description_file(
-    files: tuple[Path, Path], capsys: pytest.CaptureFixture[str]
+    files: tuple[Path, Path], tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     from loader_model.cli import main
 
     description, params = files
+    output = tmp_path / "run.csv"
     argv = ["simulate", "--machine", str(description), "--params", str(params)]
-    assert main([*argv, "--course", "single", "--duration", "4"]) == 0
+    assert main([*argv, "--course", "single", "--duration", "4", "--output", str(output)]) == 0
     out = capsys.readouterr().out
     assert out.startswith("three_axle_cab: single obstacle") and "a_w" in out
+    header = output.read_text(encoding="utf-8").splitlines()[0].split(",")
+    assert {"F_Ry [N]", "xi_R [m]", "w_Ry [m]", "wd_Ry [m/s]"} <= set(header)
 
 
 def test_missing_or_stale_generated_package_is_refused_naming_the_command(
