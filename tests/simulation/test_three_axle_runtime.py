@@ -217,3 +217,33 @@ def test_bad_description_entry_is_refused_by_derive_naming_it(
     assert not (tmp_path / "bad_generated").exists()
     assert derive_main([str(tmp_path / "missing.toml")]) == 2
     assert "missing.toml: no such description file" in capsys.readouterr().err
+
+
+def test_lift_off_events_and_airborne_check_cover_every_axle(plant, board_run) -> None:
+    """Synthetic rows from the board run: the rear axle R alone off the ground for 0.2 s is a
+    lift-off event of F_Ry and no flight (the others carry the machine); all three off for
+    longer than the bound stops the run, naming all three."""
+    from loader_model.simulation.events import find_events
+    from loader_model.simulation.validity import validity_bounds
+    from loader_model.simulation.validity_check import ValidityMonitor
+
+    _, result = board_run
+    layout = plant.layout
+    outputs = np.column_stack([result.columns[n] for n in layout.output_names])
+    states = np.column_stack([result.columns[n] for n in layout.state_names])
+    rear_off = outputs.copy()
+    rear_off[1000:1200, layout.output_names.index("F_Ry")] = 0.0
+    bounds = validity_bounds(plant.params, machine=layout.machine.name)
+    assert ValidityMonitor(bounds, 1e-3, layout).check(0, states, rear_off) is None
+    columns = dict(result.columns) | {"F_Ry": rear_off[:, layout.output_names.index("F_Ry")]}
+    events = find_events(
+        result.time_s, columns, stroke_m=0.5, max_displacement=1.0, axles=("A", "B", "R")
+    )
+    assert [(e.kind, e.signal, e.start_s) for e in events] == [("tyre_off_ground", "F_Ry", 1.0)]
+    airborne = outputs.copy()
+    rows = slice(1000, 1000 + round(bounds.airborne_s / 1e-3) + 5)
+    airborne[rows, [layout.output_names.index(f"F_{a}y") for a in "ABR"]] = 0.0
+    violation = ValidityMonitor(bounds, 1e-3, layout).check(0, states, airborne)
+    assert violation is not None and violation.bound == "airborne_s"
+    assert violation.signal == "F_Ay, F_By, F_Ry"
+    assert "all 3 tyres off the ground (F_Ay = F_By = F_Ry = 0)" in violation.describe()
