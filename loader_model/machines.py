@@ -31,12 +31,9 @@ Examples
 from __future__ import annotations
 
 import functools
-import hashlib
 import importlib
-import importlib.util
 import os
 import pkgutil
-import sys
 import tomllib
 from dataclasses import dataclass
 from importlib import resources
@@ -45,6 +42,12 @@ from types import ModuleType
 from typing import Any
 
 from loader_model.io.files import read_text
+from loader_model.machine_packages import (
+    description_hash,
+    external,
+    generated_folder,
+    register_external,
+)
 
 __all__ = [
     "DEFAULT_MACHINE",
@@ -61,11 +64,6 @@ __all__ = [
 DEFAULT_MACHINE = "skid_steer"
 _ROOT_PACKAGE = "loader_model_generated"
 _SUFFIX = ".machine.toml"
-_EXTERNAL_SUFFIX = "_generated"
-_EXTERNAL_PREFIX = "loader_model_machine_"
-#: Machines loaded from description files outside the package in this process:
-#: name -> (resolved description path, module name of its generated package, description hash).
-_EXTERNAL: dict[str, tuple[Path, str, str]] = {}
 
 
 @dataclass(frozen=True)
@@ -155,12 +153,6 @@ class MachineInfo:
         return self.generated().function(name)
 
 
-def description_hash(path: str | os.PathLike[str]) -> str:
-    """``sha256:<hex>`` of a description file (line endings normalised, as ``derive`` does)."""
-    data = Path(path).read_bytes().replace(b"\r\n", b"\n")
-    return "sha256:" + hashlib.sha256(data).hexdigest()
-
-
 def _package_name(name: str) -> str:
     return _ROOT_PACKAGE if name == DEFAULT_MACHINE else f"{_ROOT_PACKAGE}.{name}"
 
@@ -191,70 +183,6 @@ def _shipped_description(name: str) -> Path:
     return Path(str(path))
 
 
-def generated_folder(description: str | os.PathLike[str]) -> Path:
-    """Where the generated package of a description outside the package lives (convention).
-
-    ``path/to/<stem>.toml`` -> ``path/to/<stem>_generated/``, the folder that
-    ``python -m derive path/to/<stem>.toml`` writes.
-    """
-    path = Path(description)
-    return path.with_name(path.stem + _EXTERNAL_SUFFIX)
-
-
-def _derive_command(path: Path) -> str:
-    return f"python -m derive {path}"
-
-
-def _register_external(path: Path, name: str) -> str:
-    """Import the generated package beside ``path`` under a unique module name (module notes)."""
-    folder = generated_folder(path)
-    wanted = description_hash(path)
-    init = folder / "__init__.py"
-    if not init.is_file():
-        raise ValueError(
-            f"{path}: machine {name!r} has no generated package in {folder}/; derive it with "
-            f"`{_derive_command(path)}` (needs the derive extra: pip install -e '.[derive]')"
-        )
-    header = init.read_text(encoding="utf-8")
-    if f'DESCRIPTION_HASH = "{wanted}"' not in header:
-        raise ValueError(
-            f"{path}: the generated package {folder}/ was derived from another version of this "
-            f"description (its DESCRIPTION_HASH is not {wanted}); derive it again with "
-            f"`{_derive_command(path)}`"
-        )
-    known = _EXTERNAL.get(name)
-    if known is not None:
-        if known[0] == path.resolve() and known[2] != wanted:
-            raise ValueError(
-                f"{path}: the description of machine {name!r} changed since this process "
-                "loaded it; start a new process to use the new version"
-            )
-        if known[0] != path.resolve():
-            raise ValueError(
-                f"{path}: machine {name!r} is already loaded from {known[0]} in this process; "
-                "give the description another [machine] name"
-            )
-        return name
-    module_name = f"{_EXTERNAL_PREFIX}{name}_{wanted.removeprefix('sha256:')[:12]}"
-    spec = importlib.util.spec_from_file_location(
-        module_name, init, submodule_search_locations=[str(folder)]
-    )
-    if spec is None or spec.loader is None:  # pragma: no cover - a readable __init__.py loads
-        raise ValueError(f"{path}: cannot import the generated package {folder}/")
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[module_name] = module
-    try:
-        spec.loader.exec_module(module)
-    except Exception as error:
-        del sys.modules[module_name]
-        raise ValueError(
-            f"{path}: the generated package {folder}/ does not import ({error}); derive it "
-            f"again with `{_derive_command(path)}`"
-        ) from None
-    _EXTERNAL[name] = (path.resolve(), module_name, wanted)
-    return name
-
-
 def resolve_machine_name(source: str | os.PathLike[str]) -> str:
     """The generated machine a name or a description file stands for.
 
@@ -279,7 +207,7 @@ def resolve_machine_name(source: str | os.PathLike[str]) -> str:
     """
     text = os.fspath(source)
     if not (isinstance(source, os.PathLike) or text.endswith(".toml") or os.sep in text):
-        if text not in list_machines() and text not in _EXTERNAL:
+        if text not in list_machines() and external(text) is None:
             raise _unknown(text)
         return text
     raw = read_text(text, "machine description")
@@ -295,7 +223,7 @@ def resolve_machine_name(source: str | os.PathLike[str]) -> str:
             "(letters, digits, underscores)"
         )
     if name not in list_machines():
-        return _register_external(Path(text), name)
+        return register_external(Path(text), name)
     if description_hash(text) != machine(name).description_hash:
         raise ValueError(
             f"{text}: the description of machine {name!r} differs from the one its generated "
@@ -367,7 +295,8 @@ def machine(source: str | os.PathLike[str] = DEFAULT_MACHINE) -> MachineInfo:
     ValueError
         See :func:`resolve_machine_name`.
     """
-    name = source if source in _EXTERNAL or source in list_machines() else None
+    known = isinstance(source, str) and (external(source) or source in list_machines())
+    name = source if known else None
     # a file is resolved (read and hashed) on every call, so an edit after loading is refused
     return _machine(name if name is not None else resolve_machine_name(source))
 
@@ -375,8 +304,9 @@ def machine(source: str | os.PathLike[str] = DEFAULT_MACHINE) -> MachineInfo:
 @functools.cache
 def _machine(name: str) -> MachineInfo:
     """The registry entry of the resolved machine ``name`` (built once per process)."""
-    if name in _EXTERNAL:
-        path, package, _ = _EXTERNAL[name]
+    found = external(name)
+    if found is not None:
+        path, package = found
     else:
         path, package = _shipped_description(name), _package_name(name)
     raw = tomllib.loads(path.read_text(encoding="utf-8"))
