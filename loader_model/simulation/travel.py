@@ -281,7 +281,8 @@ def road_input(
         cams = tuple(cams)
         if len(cams) != n or not all(isinstance(cam, TandemCam) for cam in cams):
             raise ValueError(
-                f"cams must be {n} TandemCam (axles {', '.join(names)}) or None; got {cams!r}"
+                f"cams must be {'two' if n == 2 else n} TandemCam (axles {', '.join(names)}) "
+                f"or None; got {cams!r}"
             )
     count = int(np.floor(duration_s * rate_hz + 1e-9)) + 1
     if count < 2 or count > 50_000_000:
