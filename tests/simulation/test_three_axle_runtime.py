@@ -247,3 +247,22 @@ def test_lift_off_events_and_airborne_check_cover_every_axle(plant, board_run) -
     assert violation is not None and violation.bound == "airborne_s"
     assert violation.signal == "F_Ay, F_By, F_Ry"
     assert "all 3 tyres off the ground (F_Ay = F_By = F_Ry = 0)" in violation.describe()
+
+
+@pytest.mark.parametrize(
+    ("command", "message"),
+    [
+        (["design", "--output", "gains.toml"], "design drives two axles"),
+        (["export-fmu", "m.fmu"], "export-fmu exports machines with two axles"),
+    ],
+)
+def test_commands_that_assume_two_axles_refuse_three(
+    files: tuple[Path, Path], capsys: pytest.CaptureFixture[str], command: list[str], message: str
+) -> None:
+    from loader_model.cli import main
+
+    description, params = files
+    argv = [command[0], "--machine", str(description), "--params", str(params), *command[1:]]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert message in err and "'three_axle_cab' has 3 (A, B, R)" in err and "Traceback" not in err
