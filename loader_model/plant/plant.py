@@ -200,7 +200,8 @@ def build_plant(symbol: type = ca.SX, machine: str = DEFAULT_MACHINE) -> ca.Func
     xdot = ca.vertcat(pd, pdd, anchor_rate, drive["rates"], occupant_rate)
     tyres = info.function("tyre_contact")(p, pd, anchor, road, road_rate, completed)[0]
     h = layout.index("p_A")
-    joints = [p[3 + k] - p[2 + k] for k in range(n_p - 3)]
+    index = info.coordinate_names.index
+    joints = [p[index(body)] - p[index(parent)] for body, parent in info.joint_coordinates]
     y = ca.vertcat(
         pd[0],
         pd[1],

@@ -91,32 +91,43 @@ class Course:
     name: str
 
     def duration_s(self, wheelbase_m: float, tyre_radius_m: float = DEFAULT_TYRE_RADIUS_M) -> float:
-        """Drive time in s until the rear axle is R past the last vertex plus ``settle_s``."""
+        """Drive time in s until the rear axle (``wheelbase_m`` behind the front axle; for more
+        axles the rearmost one's distance) is R past the last vertex plus ``settle_s``."""
         past_m = self.profile.end_m + wheelbase_m + tyre_radius_m - self.start_m
         return max(past_m, 0.0) / self.speed_m_s + self.settle_s
 
     def road_input(
         self,
-        wheelbase_m: float,
+        wheelbase_m: float | None = None,
         *,
         tyre_radius_m: float = DEFAULT_TYRE_RADIUS_M,
         sample_rate_hz: float = DEFAULT_SAMPLE_RATE_HZ,
-        slope_to_x_m: Sequence[float] = (0.0, 0.0),
+        slope_to_x_m: Sequence[float] | None = None,
         cams: Sequence[TandemCam] | None = None,
+        axle_offsets_m: Sequence[float] | None = None,
+        axle_names: Sequence[str] | None = None,
     ) -> RoadInput:
-        """The drive's road input table (:func:`~loader_model.simulation.travel.road_input`;
-        ``cams``: the tandem cams of axles A and B, default rigid discs)."""
-        wheelbase_m = as_number(wheelbase_m, "wheelbase_m", "m", minimum=0.0, maximum=10.0)
+        """The drive's road input table (:func:`~loader_model.simulation.travel.road_input`):
+        two axles ``wheelbase_m`` apart, or any number at ``axle_offsets_m`` behind the front
+        axle (``cams``: one tandem cam per axle, default rigid discs). The drive lasts until the
+        rearmost axle is past the last vertex (:meth:`duration_s`)."""
+        if axle_offsets_m is None:
+            wheelbase_m = as_number(wheelbase_m, "wheelbase_m", "m", minimum=0.0, maximum=10.0)
+            rear_m = wheelbase_m
+        else:
+            rear_m = max((float(d) for d in axle_offsets_m), default=0.0)
         return road_input(
             self.profile,
             speed_m_s=self.speed_m_s,
             wheelbase_m=wheelbase_m,
-            duration_s=self.duration_s(wheelbase_m, tyre_radius_m),
+            duration_s=self.duration_s(rear_m, tyre_radius_m),
             start_m=self.start_m,
             tyre_radius_m=tyre_radius_m,
             sample_rate_hz=sample_rate_hz,
             slope_to_x_m=slope_to_x_m,
             cams=cams,
+            axle_offsets_m=axle_offsets_m,
+            axle_names=axle_names,
         )
 
 

@@ -10,6 +10,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 from loader_model.plant.components import ATMOSPHERIC_PRESSURE_PA
@@ -35,6 +37,7 @@ def find_events(
     stroke_m: float,
     max_displacement: float,
     airborne_min_s: float = DEFAULT_AIRBORNE_MIN_S,
+    axles: Sequence[str] = ("A", "B"),
 ) -> tuple[Event, ...]:
     """All events (module notes) in a run's columns, in order of their start.
 
@@ -43,11 +46,15 @@ def find_events(
     time_s : numpy.ndarray
         Sample times in s.
     columns : dict of str to numpy.ndarray
-        Needs ``p_A``, ``p_B`` [Pa], ``F_Ay``, ``F_By`` [N], ``x_piston`` [m], ``V_p_ref``.
+        Needs ``p_A``, ``p_B`` [Pa], ``F_<axle>y`` [N] of every axle, ``x_piston`` [m],
+        ``V_p_ref``.
     stroke_m, max_displacement : float
         Cylinder stroke in m and the pump's maximum displacement in m³/rev.
     airborne_min_s : float
         Shortest reported tyre lift-off in s.
+    axles : sequence of str
+        The machine's axles, front first (default the skid-steer's A, B): a lift-off event per
+        axle.
     """
     found: list[Event] = []
 
@@ -68,7 +75,7 @@ def find_events(
 
     for name in ("p_A", "p_B"):
         add("cavitation", name, columns[name] + ATMOSPHERIC_PRESSURE_PA < 0.0, np.min)
-    for name in ("F_Ay", "F_By"):
+    for name in (f"F_{axle}y" for axle in axles):
         add("tyre_off_ground", name, columns[name] <= 0.0, np.min, airborne_min_s)
     piston = columns["x_piston"]
     add("end_stop", "x_piston", piston < 0.0, np.min)

@@ -12,6 +12,7 @@ write_atomically`).
 from __future__ import annotations
 
 import json
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -82,6 +83,19 @@ COLUMN_UNITS: Mapping[str, str] = MappingProxyType(
         "M_d": "N*m",
     }
 )
+
+
+_AXLE_UNITS = (  # the columns of any axle <X>: (pattern, unit)
+    (re.compile(r"F_[A-Za-z0-9]+y"), "N"),
+    (re.compile(r"xi_[A-Za-z0-9]+"), "m"),
+    (re.compile(r"w_[A-Za-z0-9]+[xy]"), "m"),
+    (re.compile(r"wd_[A-Za-z0-9]+[xy]"), "m/s"),
+)
+
+
+def _axle_unit(name: str) -> str:
+    """Unit of an axle's column not in :data:`COLUMN_UNITS` (a third axle's), else ``"-"``."""
+    return next((unit for pattern, unit in _AXLE_UNITS if pattern.fullmatch(name)), "-")
 
 
 def seat_signal_names() -> dict[str, str]:
@@ -165,8 +179,9 @@ class SimulationResult:
         return tuple(self.columns)
 
     def unit(self, name: str) -> str:
-        """Unit of column ``name`` (``"-"`` for the controller's state)."""
-        return COLUMN_UNITS.get(name, "-")
+        """Unit of column ``name`` (any axle's tyre and road columns by their pattern, ``"-"``
+        for the controller's state and other columns of no listed unit)."""
+        return COLUMN_UNITS.get(name) or _axle_unit(name)
 
     def seat_record(self) -> object:
         """The seat's accelerations as an ISO 2631 record: x = f_Px, z = f_Py, pitch = θ̈1.

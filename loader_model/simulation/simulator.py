@@ -19,6 +19,7 @@ Events (cavitation, tyre lift-off, end stops, pump saturation) are recorded in t
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import time
 from collections.abc import Sequence
 
@@ -72,7 +73,9 @@ def course_input(
 ) -> RoadInput:
     """The road input table of ``course`` for the loader of ``params``.
 
-    Wheelbase A_x − B_x from the parameters, and the horizontal input w_x = −c tan β with
+    Every axle of the machine (front first, as described) at its distance behind the front
+    axle, d_i = A_x − i_x from the parameters (two axles: the wheelbase A_x − B_x), each with
+    its own static load, cam and delay d_i / v; and the horizontal input w_x = −c tan β with
     c_i = F_iy0 / k_ix (static tyre load over longitudinal stiffness), the first-order
     effective-plane force that :mod:`~loader_model.simulation.travel` recommends for this plant.
     ``params`` may be a parameter vector (its equilibrium is computed here) or a
@@ -91,20 +94,32 @@ def course_input(
     check_envelope(envelope)
     plant = as_plant(params)
     axles = plant.layout.machine.axles
-    if len(axles) != 2:
-        raise ValueError(
-            f"machine {plant.machine!r} has {len(axles)} axles ({', '.join(axles)}); the road "
-            "tables of loader_model.simulation.travel drive two axles, front and rear"
-        )
-    front, rear = axles
-    loads = (plant.output(f"F_{front}y"), plant.output(f"F_{rear}y"))
-    gains = (loads[0] / plant.parameter(f"k_{front}x"), loads[1] / plant.parameter(f"k_{rear}x"))
+    loads = tuple(plant.output(f"F_{axle}y") for axle in axles)
+    gains = tuple(
+        load / plant.parameter(f"k_{axle}x") for axle, load in zip(axles, loads, strict=True)
+    )
     cams = None
     if envelope == "tandem-cam":
         cams = tuple(_axle_cam(plant, a, load) for a, load in zip(axles, loads, strict=True))
-    wheelbase = plant.parameter(f"{front}_x") - plant.parameter(f"{rear}_x")
+    front = plant.parameter(f"{axles[0]}_x")
+    if len(axles) == 2:  # the paper's two axles: exactly the table of before (bit-identical)
+        wheelbase = front - plant.parameter(f"{axles[1]}_x")
+        return course.road_input(
+            wheelbase, sample_rate_hz=sample_rate_hz, slope_to_x_m=gains, cams=cams
+        )
+    offsets = [front - plant.parameter(f"{axle}_x") for axle in axles]
+    if any(b < a for a, b in itertools.pairwise(offsets)) or offsets[-1] > 10.0:
+        positions = ", ".join(f"{a}_x = {plant.parameter(f'{a}_x'):.6g} m" for a in axles)
+        raise ValueError(
+            f"machine {plant.machine!r}: its axles must be described front first, each at "
+            f"most 10 m behind the front axle; got {positions}"
+        )
     return course.road_input(
-        wheelbase, sample_rate_hz=sample_rate_hz, slope_to_x_m=gains, cams=cams
+        axle_offsets_m=offsets,
+        axle_names=axles,
+        sample_rate_hz=sample_rate_hz,
+        slope_to_x_m=gains,
+        cams=cams,
     )
 
 
@@ -124,7 +139,8 @@ def _axle_cam(plant: PlantScenario, axle: str, load_n: float) -> TandemCam:
 def exogenous_table(
     road: RoadInput, time_s: np.ndarray, disturbance: np.ndarray | None = None
 ) -> np.ndarray:
-    """The plant's exogenous input w at ``time_s``: (N, 11), road, road rate, disturbance."""
+    """The plant's exogenous input w at ``time_s``: (N, 4n + 3), road and road rate of the n
+    axles, disturbance (11 columns for two axles)."""
     forces = np.zeros((time_s.size, 3)) if disturbance is None else np.asarray(disturbance)
     if forces.shape != (time_s.size, 3):
         raise ValueError(
@@ -293,6 +309,7 @@ def simulate(
         stroke_m=scenario.plant.parameter("stroke"),
         max_displacement=scenario.plant.parameter("V_p_max"),
         airborne_min_s=airborne_min_s,
+        axles=layout.machine.axles,
     )
     metadata = {
         "controller": controller.name(),

@@ -1,8 +1,11 @@
 r"""Road input of the plant for a drive at constant speed: w(t) and ẇ(t) per axle on a time table.
 
 The vehicle drives in +x at speed v. The front axle A is at distance s_A(t) = s_0 + v t along the
-profile, the rear axle B a wheelbase L behind it, s_B(t) = s_A(t) − L, so the rear axle sees the
-front axle's road delayed by L / v. Each tyre envelops the ground either as a rigid disc of radius R
+profile, axle i a distance d_i behind it (``axle_offsets_m``; d_A = 0; for two axles the rear axle
+B a wheelbase L behind it, s_B(t) = s_A(t) − L), so axle i sees the front axle's road delayed by
+d_i / v. Any number of axles, front first, in the order of the machine's ``axles`` (the
+generated plant's road inputs (w_ix, w_iy) per axle in that order). Each tyre envelops the
+ground either as a rigid disc of radius R
 (:mod:`~loader_model.simulation.envelope`, ``cams=None``) or as a tandem elliptical cam per axle
 (:mod:`~loader_model.simulation.tandem_cam`, whose spacing follows that axle's static deflection).
 
@@ -80,19 +83,25 @@ class RoadInput:
     time_s : numpy.ndarray
         (N,) sample times from 0 in s, interval 1 / ``sample_rate_hz``.
     road_m : numpy.ndarray
-        (N, 4) displacement w = (w_Ax, w_Ay, w_Bx, w_By) in m (:data:`ROAD_NAMES`).
+        (N, 2n) displacement w = (w_Ax, w_Ay, w_Bx, w_By, ...) in m, per axle (x, y), front first
+        (:data:`ROAD_NAMES` for two axles).
     road_rate_m_s : numpy.ndarray
-        (N, 4) its rate ẇ in m/s (ẇ_x = 0, module notes).
+        (N, 2n) its rate ẇ in m/s (ẇ_x = 0, module notes).
     slope : numpy.ndarray
-        (N, 2) effective slope tan β under A and B.
+        (N, n) effective slope tan β under each axle.
     profile : RoadProfile
         The raw profile.
     speed_m_s, wheelbase_m, start_m, tyre_radius_m, sample_rate_hz : float
-        The drive: speed, wheelbase, front-axle distance at t = 0, tyre radius, table rate.
+        The drive: speed, distance from the front to the rearmost axle, front-axle distance at
+        t = 0, tyre radius, table rate.
     slope_to_x_m : tuple of float
-        c_A, c_B in w_x = −c tan β.
-    cams : tuple of two TandemCam or None
-        The tandem cams of axles A and B, or None for the rigid disc of radius ``tyre_radius_m``.
+        c_i in w_ix = −c_i tan β_i, per axle.
+    cams : tuple of TandemCam or None
+        The tandem cam of each axle, or None for the rigid disc of radius ``tyre_radius_m``.
+    axle_offsets_m : tuple of float
+        d_i, the distance of each axle behind the front axle in m (first 0; default (0, L)).
+    axle_names : tuple of str
+        The axles' names, front first (default ("A", "B")), for messages and columns.
     """
 
     time_s: np.ndarray
@@ -105,8 +114,14 @@ class RoadInput:
     start_m: float
     tyre_radius_m: float
     sample_rate_hz: float
-    slope_to_x_m: tuple[float, float]
-    cams: tuple[TandemCam, TandemCam] | None = None
+    slope_to_x_m: tuple[float, ...]
+    cams: tuple[TandemCam, ...] | None = None
+    axle_offsets_m: tuple[float, ...] = ()
+    axle_names: tuple[str, ...] = ("A", "B")
+
+    def __post_init__(self) -> None:
+        if not self.axle_offsets_m:
+            object.__setattr__(self, "axle_offsets_m", (0.0, self.wheelbase_m))
 
     @property
     def envelope(self) -> str:
@@ -118,28 +133,31 @@ class RoadInput:
         """Time of the last sample in s."""
         return float(self.time_s[-1])
 
+    @property
+    def n_axles(self) -> int:
+        """Number of axles n."""
+        return len(self.axle_offsets_m)
+
     def axle_distance(self, time_s: object) -> np.ndarray:
-        """Distances (s_A, s_B) in m of the axles at ``time_s``; shape (..., 2)."""
+        """Distances (s_A, s_B, ...) in m of the axles at ``time_s``; shape (..., n)."""
         t = np.asarray(time_s, dtype=float)[..., None]
-        return self.start_m + self.speed_m_s * t - np.array([0.0, self.wheelbase_m])
+        return self.start_m + self.speed_m_s * t - np.array(self.axle_offsets_m)
 
     def road(self, time_s: object) -> np.ndarray:
-        """w at ``time_s`` by linear interpolation of the table; shape (..., 4), held past the end."""
+        """w at ``time_s`` by linear interpolation of the table; shape (..., 2n), held past the
+        end."""
         return self._interpolate(self.road_m, time_s)
 
     def road_rate(self, time_s: object) -> np.ndarray:
-        """ẇ at ``time_s`` by linear interpolation of the table; shape (..., 4)."""
+        """ẇ at ``time_s`` by linear interpolation of the table; shape (..., 2n)."""
         return self._interpolate(self.road_rate_m_s, time_s)
 
     def exact_road(self, time_s: object) -> np.ndarray:
-        """w at ``time_s`` from the envelope itself, no table (slow; for checks); shape (..., 4)."""
+        """w at ``time_s`` from the envelope itself, no table (slow; for checks); shape (..., 2n)."""
         distance = self.axle_distance(time_s)
         height_m, slope, _ = _effective(self.profile, distance, self.tyre_radius_m, self.cams)
         horizontal_m = -np.asarray(self.slope_to_x_m) * slope
-        return np.stack(
-            [horizontal_m[..., 0], height_m[..., 0], horizontal_m[..., 1], height_m[..., 1]],
-            axis=-1,
-        )
+        return _interleave(horizontal_m, height_m)
 
     def _interpolate(self, table: np.ndarray, time_s: object) -> np.ndarray:
         if isinstance(time_s, float | int):  # fast path for a simulator's scalar calls
@@ -154,17 +172,57 @@ class RoadInput:
         return table[index] + fraction * (table[index + 1] - table[index])
 
 
+def _interleave(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """(..., n) x and y parts -> (..., 2n) columns (x_0, y_0, x_1, y_1, ...)."""
+    return np.stack([x, y], axis=-1).reshape(*x.shape[:-1], 2 * x.shape[-1])
+
+
+def _axles(
+    wheelbase_m: float | None,
+    axle_offsets_m: Sequence[float] | None,
+    axle_names: Sequence[str] | None,
+) -> tuple[tuple[float, ...], tuple[str, ...]]:
+    """The checked axle offsets d_i (first 0, non-decreasing, ≤ 10 m) and names."""
+    if (wheelbase_m is None) == (axle_offsets_m is None):
+        raise ValueError(
+            "give either wheelbase_m (two axles) or axle_offsets_m (each axle's distance behind "
+            f"the front axle); got wheelbase_m={wheelbase_m!r}, axle_offsets_m={axle_offsets_m!r}"
+        )
+    if axle_offsets_m is None:
+        offsets = (0.0, as_number(wheelbase_m, "wheelbase_m", "m", minimum=0.0, maximum=10.0))
+    else:
+        offsets = tuple(
+            as_number(d, f"axle_offsets_m[{i}]", "m", minimum=0.0, maximum=10.0)
+            for i, d in enumerate(axle_offsets_m)
+        )
+        if len(offsets) < 2 or offsets[0] != 0.0 or any(np.diff(offsets) < 0.0):
+            raise ValueError(
+                "axle_offsets_m must give two or more distances behind the front axle in m, "
+                f"the first 0, front to rear (non-decreasing); got {axle_offsets_m!r}"
+            )
+    names = tuple(axle_names) if axle_names is not None else None
+    if names is None:
+        names = ("A", "B") if len(offsets) == 2 else tuple(f"axle {i}" for i in range(len(offsets)))
+    if len(names) != len(offsets):
+        raise ValueError(
+            f"axle_names must name the {len(offsets)} axles of axle_offsets_m; got {axle_names!r}"
+        )
+    return offsets, names
+
+
 def road_input(
     profile: RoadProfile,
     *,
     speed_m_s: float,
-    wheelbase_m: float,
+    wheelbase_m: float | None = None,
     duration_s: float,
     start_m: float = 0.0,
     tyre_radius_m: float = DEFAULT_TYRE_RADIUS_M,
     sample_rate_hz: float = DEFAULT_SAMPLE_RATE_HZ,
-    slope_to_x_m: Sequence[float] = (0.0, 0.0),
+    slope_to_x_m: Sequence[float] | None = None,
     cams: Sequence[TandemCam] | None = None,
+    axle_offsets_m: Sequence[float] | None = None,
+    axle_names: Sequence[str] | None = None,
 ) -> RoadInput:
     """Tabulate the road input w(t), ẇ(t) of a drive over ``profile`` at constant speed.
 
@@ -174,22 +232,27 @@ def road_input(
         Raw ground profile.
     speed_m_s : float
         Forward speed v in m/s, (0, 30].
-    wheelbase_m : float
-        Distance L from the rear axle B to the front axle A in m, [0, 10].
+    wheelbase_m : float, optional
+        Two axles: distance L from the rear axle B to the front axle A in m, [0, 10].
     duration_s : float
         Length of the drive in s, (0, 3600]; the table ends at the last sample not after it.
     start_m : float
         Distance of the front axle A at t = 0 in m.
     tyre_radius_m : float
-        Rigid-wheel radius R in m (both axles).
+        Rigid-wheel radius R in m (every axle).
     sample_rate_hz : float
         Table rate in Hz, [10, 1e6].
-    slope_to_x_m : sequence of two float
-        c_A, c_B in m in w_x = −c tan β: the static vertical tyre load over the longitudinal tyre
-        stiffness, F_iy0 / k_ix, per axle; (0, 0) gives w_x = 0.
-    cams : sequence of two TandemCam, optional
-        Tandem elliptical cams of axles A and B (:meth:`~loader_model.simulation.tandem_cam.
+    slope_to_x_m : sequence of float, optional
+        c_i in m in w_ix = −c_i tan β_i, one per axle: the static vertical tyre load over the
+        longitudinal tyre stiffness, F_iy0 / k_ix; default zeros (w_x = 0).
+    cams : sequence of TandemCam, optional
+        One tandem elliptical cam per axle (:meth:`~loader_model.simulation.tandem_cam.
         TandemCam.from_deflection`); default: rigid discs of radius ``tyre_radius_m``.
+    axle_offsets_m : sequence of float, optional
+        Any number of axles (instead of ``wheelbase_m``): each axle's distance behind the front
+        axle in m, front first, the first 0, each in [0, 10].
+    axle_names : sequence of str, optional
+        The axles' names for messages (default ``("A", "B")`` for two axles).
 
     Returns
     -------
@@ -199,23 +262,28 @@ def road_input(
     speed_m_s = as_number(
         speed_m_s, "speed_m_s", "m/s", minimum=0.0, maximum=30.0, strict_minimum=True
     )
-    wheelbase_m = as_number(wheelbase_m, "wheelbase_m", "m", minimum=0.0, maximum=10.0)
+    offsets, names = _axles(wheelbase_m, axle_offsets_m, axle_names)
+    n = len(offsets)
     duration_s = as_number(
         duration_s, "duration_s", "s", minimum=0.0, maximum=3600.0, strict_minimum=True
     )
     start_m = as_number(start_m, "start_m", "m")
     rate_hz = as_number(sample_rate_hz, "sample_rate_hz", "Hz", minimum=10.0, maximum=1e6)
-    gains = tuple(slope_to_x_m)
-    if len(gains) != 2:
-        raise ValueError(f"slope_to_x_m must give (c_A, c_B) in m; got {slope_to_x_m!r}")
-    gains_m = (
-        as_number(gains[0], "slope_to_x_m[0]", "m", minimum=0.0, maximum=1.0),
-        as_number(gains[1], "slope_to_x_m[1]", "m", minimum=0.0, maximum=1.0),
+    gains = (0.0,) * n if slope_to_x_m is None else tuple(slope_to_x_m)
+    if len(gains) != n:
+        wanted = ", ".join(f"c_{name}" for name in names) if n == 2 else f"{n} values c_i"
+        raise ValueError(f"slope_to_x_m must give ({wanted}) in m; got {slope_to_x_m!r}")
+    gains_m = tuple(
+        as_number(c, f"slope_to_x_m[{i}]", "m", minimum=0.0, maximum=1.0)
+        for i, c in enumerate(gains)
     )
     if cams is not None:
         cams = tuple(cams)
-        if len(cams) != 2 or not all(isinstance(cam, TandemCam) for cam in cams):
-            raise ValueError(f"cams must be two TandemCam (axles A, B) or None; got {cams!r}")
+        if len(cams) != n or not all(isinstance(cam, TandemCam) for cam in cams):
+            raise ValueError(
+                f"cams must be {'two' if n == 2 else n} TandemCam (axles {', '.join(names)}) "
+                f"or None; got {cams!r}"
+            )
     count = int(np.floor(duration_s * rate_hz + 1e-9)) + 1
     if count < 2 or count > 50_000_000:
         raise ValueError(
@@ -223,28 +291,18 @@ def road_input(
             f"({duration_s:g} s at {rate_hz:g} Hz)"
         )
     time_s = np.arange(count) / rate_hz
-    distance_m = start_m + speed_m_s * time_s[:, None] - np.array([0.0, wheelbase_m])
+    distance_m = start_m + speed_m_s * time_s[:, None] - np.array(offsets)
     height_m, slope, height_rate = _effective(profile, distance_m, tyre_radius_m, cams)
     if not np.all(np.isfinite(slope)):
         row, axle = np.argwhere(~np.isfinite(slope))[0]
         wheel = f"rigid wheel of radius {tyre_radius_m:g} m" if cams is None else "tandem cam"
         raise ValueError(
             f"the {wheel} meets a wall at its equator at "
-            f"{distance_m[row, axle]:.6g} m (axle {'AB'[axle]}): the profile has a step at least "
-            "one radius tall"
+            f"{distance_m[row, axle]:.6g} m (axle {names[axle]}): the profile has a step at "
+            "least one radius tall"
         )
-    horizontal_m = -np.asarray(gains_m) * slope
-    road_m = np.column_stack(
-        [horizontal_m[:, 0], height_m[:, 0], horizontal_m[:, 1], height_m[:, 1]]
-    )
-    rate_m_s = np.column_stack(
-        [
-            np.zeros(count),
-            speed_m_s * height_rate[:, 0],
-            np.zeros(count),
-            speed_m_s * height_rate[:, 1],
-        ]
-    )
+    road_m = _interleave(-np.asarray(gains_m) * slope, height_m)
+    rate_m_s = _interleave(np.zeros((count, n)), speed_m_s * height_rate)
     for array in (time_s, road_m, rate_m_s, slope):
         array.setflags(write=False)
     return RoadInput(
@@ -254,12 +312,14 @@ def road_input(
         slope=slope,
         profile=profile,
         speed_m_s=speed_m_s,
-        wheelbase_m=wheelbase_m,
+        wheelbase_m=offsets[-1],
         start_m=start_m,
         tyre_radius_m=float(tyre_radius_m),
         sample_rate_hz=rate_hz,
         slope_to_x_m=gains_m,
         cams=cams,
+        axle_offsets_m=offsets,
+        axle_names=names,
     )
 
 
@@ -267,9 +327,9 @@ def _effective(
     profile: RoadProfile,
     distance_m: np.ndarray,
     tyre_radius_m: float,
-    cams: tuple[TandemCam, TandemCam] | None,
+    cams: tuple[TandemCam, ...] | None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Effective height, slope tan β and dh_eff/ds at axle distances (..., 2) (A, B)."""
+    """Effective height, slope tan β and dh_eff/ds at axle distances (..., n)."""
     if cams is None:
         height_m, slope = effective_road(profile, distance_m, tyre_radius_m)
         return height_m, slope, slope

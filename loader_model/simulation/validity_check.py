@@ -44,8 +44,8 @@ class ValidityViolation:
     bound : str
         The field of :class:`ValidityBounds` crossed.
     signal : str
-        The column that shows it: ``theta_1``, ``phi`` (θ2 − θ1), ``F_Ay, F_By``, ``f_Sx`` or
-        ``f_Sy``.
+        The column that shows it: ``theta_1``, ``phi`` (θ2 − θ1), the axles' loads
+        (``F_Ay, F_By``; more axles: each), ``f_Sx`` or ``f_Sy``.
     index : int
         Row of the time series (t = index · h).
     time_s, value, limit : float
@@ -81,9 +81,11 @@ class ValidityViolation:
                 f"beyond {bound} {self.limit:.4g} rad ({math.degrees(self.limit):.1f}°)"
             )
         elif self.bound == "airborne_s":
+            tyres = self.signal.split(", ")
+            which = "both tyres" if len(tyres) == 2 else f"all {len(tyres)} tyres"
             text = (
-                f"both tyres off the ground (F_Ay = F_By = 0) for {self.value:.3f} s, longer "
-                f"than the bound {self.limit:g} s"
+                f"{which} off the ground ({' = '.join(tyres)} = 0) for {self.value:.3f} s, "
+                f"longer than the bound {self.limit:g} s"
             )
         else:
             text = (
@@ -140,8 +142,8 @@ class ValidityMonitor:
     period_s : float
         Row spacing h in s.
     layout : PlantLayout, optional
-        The plant's names (default the skid-steer's): pitch θ1, boom θ2 − θ1, the outermost
-        axles' vertical loads and the seat point's specific forces.
+        The plant's names (default the skid-steer's): pitch θ1, boom θ2 − θ1, every axle's
+        vertical load (airborne: all of them zero) and the seat point's specific forces.
     """
 
     def __init__(
@@ -153,8 +155,8 @@ class ValidityMonitor:
         seat = "S" if layout is None else layout.machine.seat_point
         self._state_names = states
         self._theta = states.index("theta_1"), states.index("theta_2")
-        self._tyres = outputs.index(f"F_{axles[0]}y"), outputs.index(f"F_{axles[-1]}y")
-        self._tyre_signal = f"F_{axles[0]}y, F_{axles[-1]}y"
+        self._tyres = [outputs.index(f"F_{axle}y") for axle in axles]
+        self._tyre_signal = ", ".join(f"F_{axle}y" for axle in axles)
         self._seat = outputs.index(f"f_{seat}x"), outputs.index(f"f_{seat}y")
         self._seat_signals = f"f_{seat}x", f"f_{seat}y"
         self.bounds = bounds
@@ -178,13 +180,13 @@ class ValidityMonitor:
             (n, len(OUTPUT_NAMES)) plant outputs of the rows.
         """
         bounds = self.bounds
-        seat_columns, (front, rear) = list(self._seat), self._tyres
+        seat_columns = list(self._seat)
         if self._seat_static is None:
             self._seat_static = outputs[0, seat_columns].copy()
         theta = states[:, self._theta[0]]
         phi = states[:, self._theta[1]] - theta
         seat = outputs[:, seat_columns] - self._seat_static
-        airborne = self._airborne_time((outputs[:, front] <= 0.0) & (outputs[:, rear] <= 0.0))
+        airborne = self._airborne_time(np.all(outputs[:, self._tyres] <= 0.0, axis=1))
         seat_x, seat_y = self._seat_signals
         accel, flight = bounds.seat_acceleration_m_s2, bounds.airborne_s * (1 + 1e-9)
         within = (  # the common case in a few reductions (NaN is never within: checked below)
@@ -226,7 +228,7 @@ class ValidityMonitor:
         )
 
     def _airborne_time(self, off: np.ndarray) -> np.ndarray:
-        """Time in s both tyres have been off the ground at each row (0 on the ground); sets
+        """Time in s every tyre has been off the ground at each row (0 on the ground); sets
         ``_longest_s``, the longest of them in these rows."""
         if not off.any():
             self._airborne_rows, self._longest_s = 0, 0.0

@@ -3,7 +3,7 @@ sliding mount with a spring-damper (a suspended cab), derived through ``derive/`
 temporary folder. Checked: the statically indeterminate static loads (the level-road
 compatibility of :func:`derive.mechanics._static_loads`), the mass matrix against an independent
 ``sympy.physics.mechanics`` model at one configuration, energy conservation of the undamped
-motion, and that the runtime refuses the ungenerated description with advice."""
+motion, and that the runtime refuses the description without its generated folder, with advice."""
 
 from __future__ import annotations
 
@@ -223,11 +223,18 @@ def test_linearisation_matches_finite_differences(generated: tuple[ModuleType, P
     np.testing.assert_allclose(b_mat[index, 0], b_reference, rtol=1e-6, atol=1e-9)
 
 
-def test_runtime_refuses_the_ungenerated_description(generated: tuple[ModuleType, Path]) -> None:
-    """The runtime binds only machines generated into ``loader_model_generated`` (``make
-    regenerate``); a description elsewhere is refused with that advice."""
+def test_runtime_refuses_a_description_without_its_generated_folder(
+    generated: tuple[ModuleType, Path],
+) -> None:
+    """The runtime binds a description outside the package only through the generated package
+    beside it (``<stem>_generated/``, written by ``python -m derive <file>``); this fixture was
+    derived into another folder, so it is refused with that command."""
     from loader_model.machines import machine
 
     _, description = generated
-    with pytest.raises(ValueError, match="has not been generated; run `make regenerate"):
+    with pytest.raises(
+        ValueError,
+        match=r"no generated package in .*three_axle_cab_generated/; "
+        r"derive it with `python -m derive .*three_axle_cab.toml`",
+    ):
         machine(description)

@@ -131,3 +131,60 @@ def test_road_input_errors_name_argument(kwargs, message):
     arguments = {"speed_m_s": 2.5, "wheelbase_m": 1.2, "duration_s": 1.0} | kwargs
     with pytest.raises(ValueError, match=message):
         road_input(flat_road(), **arguments)
+
+
+def test_three_axles_each_delayed_by_its_distance():
+    """Three axles 0, 1.5 and 3.0 m behind the front one at 2 m/s: each axle's samples are the
+    front axle's 750 and 1500 samples earlier (to 1e-15 m of a 4 cm board: the distances
+    s_0 + v t − d_i round differently; measured 5.6e-17 m), each with its own c_i (equal
+    cams, so that the delayed roads compare)."""
+    from loader_model.simulation.tandem_cam import TandemCam
+
+    cams = tuple(TandemCam.from_deflection(0.42, d) for d in (0.03, 0.03, 0.03))
+    drive = road_input(
+        single_board(height_m=0.04, width_m=0.14, position_m=1.0),
+        speed_m_s=2.0,
+        duration_s=4.0,
+        axle_offsets_m=(0.0, 1.5, 3.0),
+        axle_names=("A", "B", "R"),
+        slope_to_x_m=(0.005, 0.004, 0.003),
+        cams=cams,
+    )
+    assert drive.road_m.shape == (4001, 6) and drive.slope.shape == (4001, 3)
+    assert drive.wheelbase_m == 3.0 and drive.n_axles == 3
+    for axle, shift in ((1, 750), (2, 1500)):
+        np.testing.assert_allclose(
+            drive.road_m[shift:, 2 * axle + 1], drive.road_m[:-shift, 1], rtol=0, atol=1e-15
+        )
+        np.testing.assert_allclose(
+            drive.slope[shift:, axle], drive.slope[:-shift, 0], rtol=0, atol=1e-12
+        )
+    c = np.array([0.005, 0.004, 0.003])
+    np.testing.assert_array_equal(drive.road_m[:, 0::2], -c * drive.slope)
+    assert drive.road_m[:, 1].max() > 0.03 and np.all(drive.road_rate_m_s[:, 0::2] == 0.0)
+    # the same two axles by wheelbase or by offsets: the same table, bit for bit
+    two = {"speed_m_s": 2.0, "duration_s": 2.0, "slope_to_x_m": (0.005, 0.004)}
+    board = single_board(height_m=0.04, width_m=0.14, position_m=1.0)
+    by_wheelbase = road_input(board, wheelbase_m=1.2, **two)
+    by_offsets = road_input(board, axle_offsets_m=(0.0, 1.2), **two)
+    np.testing.assert_array_equal(by_wheelbase.road_m, by_offsets.road_m)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({}, r"give either wheelbase_m \(two axles\) or axle_offsets_m"),
+        ({"wheelbase_m": 1.2, "axle_offsets_m": (0.0, 1.2)}, r"give either wheelbase_m"),
+        ({"axle_offsets_m": (0.5, 1.2)}, r"axle_offsets_m must give .* the first 0, front to rear"),
+        ({"axle_offsets_m": (0.0, 2.0, 1.0)}, r"front to rear \(non-decreasing\); got \(0.0, 2.0"),
+        (
+            {"axle_offsets_m": (0.0, 11.0)},
+            r"axle_offsets_m\[1\] must be a finite number in \[0, 10",
+        ),
+        ({"axle_offsets_m": (0.0, 1.0, 2.0), "slope_to_x_m": (0.0, 0.0)}, r"\(3 values c_i\)"),
+        ({"axle_offsets_m": (0.0, 1.0, 2.0), "axle_names": ("A", "B")}, r"name the 3 axles"),
+    ],
+)
+def test_axle_offsets_errors_name_argument(kwargs, message):
+    with pytest.raises(ValueError, match=message):
+        road_input(flat_road(), speed_m_s=2.5, duration_s=1.0, **kwargs)

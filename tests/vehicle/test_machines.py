@@ -65,7 +65,12 @@ def test_registry_errors(tmp_path: Path) -> None:
         machine("tractor")
     other = tmp_path / "tractor.toml"
     other.write_text('[machine]\nname = "tractor"\n')
-    with pytest.raises(ValueError, match=r"'tractor' has not been generated; run `make regenerate"):
+    folder = tmp_path / "tractor_generated"
+    with pytest.raises(
+        ValueError,
+        match=rf"'tractor' has no generated package in {folder}/; derive it with "
+        rf"`python -m derive {other}`",
+    ):
         machine(other)
     changed = tmp_path / "wl.toml"
     changed.write_text((MACHINES_DIR / "compact_wheel_loader.toml").read_text() + "\n# edit\n")
