@@ -14,7 +14,7 @@ about the commands v (scaled by the pump's limit) is ½ v'ᵀ P v' + qᵀ v' + c
 P = 2 Jᵀ J / K_s and q = 2 Jᵀ r / K_s − P v: the form of :mod:`~loader_model.bound.condensed`,
 whose constraint generation (:func:`~loader_model.bound.constrained.generate_constraints`)
 solves it. Every path sample (:data:`~loader_model.bound.problem.PATH_SIGNALS` and V̇_p) is
-linear in v' with the row C_{p,k} S_k (kept in single precision: K_s × 4 × N values), the end
+linear in v' with the row C_{p,k} S_k (all K_s × 4 × N kept: 460 MB for 12 s), the end
 condition with C_T S_{K_s}.
 """
 
@@ -46,7 +46,7 @@ class GaussNewtonModel:
     gradient: np.ndarray
     end_matrix: np.ndarray
     end_target: np.ndarray
-    path_impulse: np.ndarray  # (K_s, n_p, N) float32 rows
+    path_impulse: np.ndarray  # (K_s, n_p, N) rows
     path_offset: np.ndarray  # (N, M, n_p) value at v' = 0 (deviation from static)
     hold_periods: int
 
@@ -57,13 +57,13 @@ class GaussNewtonModel:
 
     def path_values(self, v: np.ndarray) -> np.ndarray:
         """(N, M, n_p) the linearised path signals (deviation from static) at commands ``v``."""
-        values = np.einsum("kpn,n->kp", self.path_impulse, v.astype(np.float32))
+        values = np.einsum("kpn,n->kp", self.path_impulse, v)
         return values.reshape(self.path_offset.shape) + self.path_offset
 
     def path_rows(self, interval: np.ndarray, sub: np.ndarray, signal: np.ndarray) -> np.ndarray:
         """(rows, N) the rows of the given samples: value = row @ v + offset."""
         k = np.asarray(interval) * self.hold_periods + np.asarray(sub)
-        return self.path_impulse[k, np.asarray(signal)].astype(float)
+        return self.path_impulse[k, np.asarray(signal)]
 
 
 def gauss_newton_model(
@@ -86,7 +86,7 @@ def gauss_newton_model(
     z_sens = np.zeros((nz, n))
     hessian, gradient = np.zeros((n, n)), np.zeros(n)
     n_p = len(PATH_SIGNALS) + 1
-    impulse = np.zeros((count, n_p, n), dtype=np.float32)
+    impulse = np.zeros((count, n_p, n))
     block = np.zeros((_ROWS_PER_BLOCK * na, n))
     block_r = np.zeros(_ROWS_PER_BLOCK * na)
     out = np.zeros((na + n_p, nz))
@@ -134,7 +134,7 @@ def gauss_newton_model(
     end_matrix = np.array(end_rows)
     static = np.array([*(problem.plant.output(s) for s in PATH_SIGNALS), 0.0])
     current = (trajectory.path() - static).reshape(n, m, n_p)
-    shift = np.einsum("kpn,n->kp", impulse, v.astype(np.float32)).reshape(n, m, n_p)
+    shift = np.einsum("kpn,n->kp", impulse, v).reshape(n, m, n_p)
     return GaussNewtonModel(
         hessian=hessian,
         gradient=gradient - hessian @ v,

@@ -32,6 +32,8 @@ from loader_model.simulation.result import SimulationResult
 
 __all__ = ["NonlinearBound", "end_residual", "path_violation", "solve_nonlinear_bound"]
 
+#: Levenberg-Marquardt damping tries per linearisation (1e-9, 1e-6, 1e-3 of the mean curvature).
+DAMPING_TRIES = 3
 #: Penalty weight of the merit's constraint violation, relative to the warm start's a_total².
 PENALTY = 10.0
 
@@ -62,11 +64,14 @@ class NonlinearBound:
     solve_s : float
         Wall time, s.
     converged : bool
-        The stopping test held (module notes).
+        The relative-decrease test held, or no damped step decreased the merit further with
+        the trajectory feasible to ``path_tolerance`` (``status`` says which).
     warm_a_total_m_s2 : float
         a_total of the warm start's command table.
     history : tuple of float
         a_total after each iteration.
+    status : str
+        Why it stopped.
     """
 
     command: np.ndarray
@@ -81,6 +86,7 @@ class NonlinearBound:
     converged: bool
     warm_a_total_m_s2: float
     history: tuple[float, ...] = ()
+    status: str = ""
 
     @property
     def time_per_iteration_s(self) -> float:
@@ -187,6 +193,7 @@ def solve_nonlinear_bound(
     current, a_total, violation = merit(trajectory)
     rows = np.zeros((0, 3), dtype=int)
     history, qp_iterations, converged, iterations = [a_total], 0, False, 0
+    status = "max_iterations reached"
     bar = tqdm(total=max_iterations, desc="nonlinear bound", unit="it", disable=not progress)
     with bar:
         for _ in range(max_iterations):
@@ -194,26 +201,38 @@ def solve_nonlinear_bound(
             model = gauss_newton_model(
                 problem, trajectory, linearise(problem, trajectory), weighting, scale
             )
-            p_matrix = model.hessian + 1e-9 * np.mean(np.diag(model.hessian)) * np.eye(
-                model.intervals
-            )
-            result, rows, qp_its, _, _, _ = generate_constraints(
-                model, p_matrix, model.gradient, limits,
-                problem.u_bounds[0] / scale, problem.u_bounds[1] / scale, rows,
-                tolerance=1e-6, max_rounds=20,
-            )  # fmt: skip
-            qp_iterations += qp_its
-            step = result.u * scale - command
-            alpha, accepted = 1.0, False
-            while alpha > 1e-3:
-                candidate = rollout(problem, command + alpha * step)
-                value, a_new, v_new = merit(candidate)
-                if value < current:
-                    accepted = True
+            if not (np.all(np.isfinite(model.hessian)) and np.all(np.isfinite(model.path_impulse))):
+                status = "sensitivities overflow (the linearised period is unstable along the run)"
+                break
+            accepted, damping = False, 1e-9
+            for _ in range(DAMPING_TRIES):
+                diagonal = damping * np.mean(np.diag(model.hessian))
+                try:
+                    result, rows, qp_its, _, _, _ = generate_constraints(
+                        model, model.hessian + diagonal * np.eye(model.intervals),
+                        model.gradient - diagonal * command / scale, limits,
+                        problem.u_bounds[0] / scale, problem.u_bounds[1] / scale, rows,
+                        tolerance=1e-6, max_rounds=20,
+                    )  # fmt: skip
+                except np.linalg.LinAlgError:
+                    damping *= 1e3
+                    continue
+                qp_iterations += qp_its
+                step = result.u * scale - command
+                alpha = 1.0
+                while alpha > 1e-2 and not accepted:
+                    candidate = rollout(problem, command + alpha * step)
+                    value, a_new, v_new = merit(candidate)
+                    accepted = value < current
+                    alpha = alpha if accepted else 0.5 * alpha
+                if accepted:
                     break
-                alpha *= 0.5
+                damping *= 1e3
             if not accepted:
                 converged = violation <= path_tolerance
+                status = "stalled: no merit decrease along the damped steps" + (
+                    ", feasible to path_tolerance" if converged else ", infeasible"
+                )
                 break
             decrease = (current - value) / current
             command, trajectory = command + alpha * step, candidate
@@ -222,7 +241,7 @@ def solve_nonlinear_bound(
             bar.set_postfix_str(f"a_total {a_total:.5f}, violation {violation:.1e}, α {alpha:g}")
             bar.update()
             if decrease < rtol and violation <= path_tolerance:
-                converged = True
+                converged, status = True, "converged"
                 break
     return NonlinearBound(
         command=command - u0,
@@ -237,4 +256,5 @@ def solve_nonlinear_bound(
         converged=converged,
         warm_a_total_m_s2=a_warm,
         history=tuple(history),
+        status=status,
     )
