@@ -25,7 +25,7 @@ import casadi as ca
 import numpy as np
 
 from loader_model.bound.problem import PATH_SIGNALS, BoundProblem
-from loader_model.plant.plant import OUTPUT_NAMES, STATE_NAMES
+from loader_model.plant.plant import OUTPUT_NAMES, STATE_NAMES, plant_function
 from loader_model.simulation.compiled import CompilationError, compiled_function
 from loader_model.simulation.controllers import hold_command_controller
 from loader_model.simulation.result import seat_signal_names
@@ -125,8 +125,6 @@ def rollout(problem: BoundProblem, command: np.ndarray) -> Trajectory:
         outputs[start : start + size] = np.asarray(out[1]).T[:size]
         carry = block[size - 1]
     states[count] = carry[:nx]
-    from loader_model.plant.plant import plant_function
-
     outputs[count] = np.asarray(
         plant_function()(carry[:nx], carry[nx], exo[count], plant.params)[1]
     ).ravel()

@@ -41,7 +41,9 @@ def test_gauss_newton_gradient_matches_finite_differences(plant, road):
     scale = problem.u_bounds[1]
     command = plant.u0 + 0.2 * scale * np.sin(np.arange(problem.intervals) / 3.0)
     trajectory = rollout(problem, command)
-    model = gauss_newton_model(problem, trajectory, linearise(problem, trajectory), weighting, scale)
+    model = gauss_newton_model(
+        problem, trajectory, linearise(problem, trajectory), weighting, scale
+    )
     gradient = model.gradient + model.hessian @ (command / scale)
 
     def cost(table: np.ndarray) -> float:
@@ -123,3 +125,14 @@ def test_below_every_controller(plant, road, problem, nonlinear):
     for name, scenario in scenarios.items():
         run = simulate(road, scenario, duration_s=problem.duration_s)
         assert nonlinear.a_total_m_s2 < run.seat_evaluation().total_m_s2, name
+
+
+@pytest.mark.slow  # a nonlinear bound of 2.2 s of the paper course and two simulations
+def test_command_prints_the_nonlinear_bound(capsys):
+    from loader_model.cli import main
+
+    args = ["bound", "--bound", "nonlinear", "--duration", "2.2"]
+    assert main([*args, "--controllers", "baseline,skyhook-refined"]) == 0
+    out = capsys.readouterr().out
+    assert "bound (nonlinear)" in out
+    assert "SQP iterations" in out
