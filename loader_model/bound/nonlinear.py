@@ -32,6 +32,9 @@ from loader_model.simulation.result import SimulationResult
 
 __all__ = ["NonlinearBound", "end_residual", "path_violation", "solve_nonlinear_bound"]
 
+#: Most command values of one nonlinear bound: the path rows take K_s × 4 × N × 8 bytes (1.3 GB
+#: at 2000, 20 s of 10 ms commands) and one iteration grows with N² K_s.
+MAX_NONLINEAR_INTERVALS = 2000
 #: Levenberg-Marquardt damping tries per linearisation (1e-9, 1e-6, 1e-3 of the mean curvature).
 DAMPING_TRIES = 3
 #: Penalty weight of the merit's constraint violation, relative to the warm start's a_total².
@@ -166,6 +169,12 @@ def solve_nonlinear_bound(
         or max_iterations < 1
     ):
         raise ValueError(f"max_iterations must be an integer >= 1; got {max_iterations!r}")
+    if problem.intervals > MAX_NONLINEAR_INTERVALS:
+        raise ValueError(
+            f"problem: {problem.intervals} command values ({problem.duration_s:g} s); the "
+            f"nonlinear bound takes at most {MAX_NONLINEAR_INTERVALS} (MAX_NONLINEAR_INTERVALS): "
+            "shorten the course (duration_s) or lengthen hold_periods"
+        )
     for name, value in (("rtol", rtol), ("path_tolerance", path_tolerance)):
         if not 0.0 < value <= 0.1:
             raise ValueError(f"{name} must be in (0, 0.1]; got {value!r}")

@@ -67,7 +67,7 @@ def test_rollout_is_the_simulators_replay(plant, road, problem):
     assert np.max(np.abs(ours - theirs)) <= 1e-9 * np.max(np.abs(theirs))
 
 
-def test_bad_inputs_name_the_argument(plant, problem):
+def test_bad_inputs_name_the_argument(plant, road, problem):
     with pytest.raises(ValueError, match="max_iterations"):
         solve_nonlinear_bound(problem, np.full(problem.intervals, plant.u0), max_iterations=0)
     with pytest.raises(ValueError, match="rtol"):
@@ -78,6 +78,9 @@ def test_bad_inputs_name_the_argument(plant, problem):
         solve_nonlinear_bound(problem, np.full(problem.intervals - 1, plant.u0))
     with pytest.raises(ValueError, match="command"):
         rollout(problem, np.zeros(3))
+    long = bound_problem(plant, road, hold_periods=1, duration_s=2.5)  # 2500 command values
+    with pytest.raises(ValueError, match="problem: 2500 command values"):
+        solve_nonlinear_bound(long, np.full(long.intervals, plant.u0))
 
 
 @pytest.mark.slow  # one SQP solve of the 3 s course (about a minute), shared by four tests
