@@ -2,8 +2,8 @@
 consistency, limits, agreement with the constrained linear bound on 5 mm and the controllers.
 
 The slow tests share one solve on the conftest's 3 s, 5 mm course (empty bucket), warm-started
-from the constrained linear bound's command: measured 21 SQP iterations, 55 s on the
-development machine (2 shared cores)."""
+from the constrained linear bound's command: measured 21 SQP iterations, 26-90 s on the
+development machine (2 shared cores, depending on the load)."""
 
 from __future__ import annotations
 
