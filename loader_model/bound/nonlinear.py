@@ -207,9 +207,10 @@ def solve_nonlinear_bound(
     with bar:
         for _ in range(max_iterations):
             iterations += 1
-            model = gauss_newton_model(
-                problem, trajectory, linearise(problem, trajectory), weighting, scale
-            )
+            with np.errstate(over="ignore", invalid="ignore"):  # checked just below
+                model = gauss_newton_model(
+                    problem, trajectory, linearise(problem, trajectory), weighting, scale
+                )
             if not (np.all(np.isfinite(model.hessian)) and np.all(np.isfinite(model.path_impulse))):
                 status = "sensitivities overflow (the linearised period is unstable along the run)"
                 break
@@ -217,13 +218,14 @@ def solve_nonlinear_bound(
             for _ in range(DAMPING_TRIES):
                 diagonal = damping * np.mean(np.diag(model.hessian))
                 try:
-                    result, rows, qp_its, _, _, _ = generate_constraints(
-                        model, model.hessian + diagonal * np.eye(model.intervals),
-                        model.gradient - diagonal * command / scale, limits,
-                        problem.u_bounds[0] / scale, problem.u_bounds[1] / scale, rows,
-                        tolerance=1e-6, max_rounds=20,
-                    )  # fmt: skip
-                except np.linalg.LinAlgError:
+                    with np.errstate(over="raise", invalid="raise"):  # a failed QP: damp more
+                        result, rows, qp_its, _, _, _ = generate_constraints(
+                            model, model.hessian + diagonal * np.eye(model.intervals),
+                            model.gradient - diagonal * command / scale, limits,
+                            problem.u_bounds[0] / scale, problem.u_bounds[1] / scale, rows,
+                            tolerance=1e-6, max_rounds=20,
+                        )  # fmt: skip
+                except (np.linalg.LinAlgError, FloatingPointError):
                     damping *= 1e3
                     continue
                 qp_iterations += qp_its

@@ -130,11 +130,11 @@ def test_below_every_controller(plant, road, problem, nonlinear):
         assert nonlinear.a_total_m_s2 < run.seat_evaluation().total_m_s2, name
 
 
-@pytest.mark.slow  # a nonlinear bound of 2.2 s of the paper course and two simulations
+@pytest.mark.slow  # a nonlinear bound of 3 s of the paper course and two simulations
 def test_command_prints_the_nonlinear_bound(capsys):
     from loader_model.cli import main
 
-    args = ["bound", "--bound", "nonlinear", "--duration", "2.2"]
+    args = ["bound", "--bound", "nonlinear", "--duration", "3"]
     assert main([*args, "--controllers", "baseline,skyhook-refined"]) == 0
     out = capsys.readouterr().out
     assert "bound (nonlinear)" in out
