@@ -13,7 +13,9 @@
   size.
 - :mod:`~loader_model.bound.preview`: LQ control with road preview on the linear bound's plant
   and cost; :mod:`~loader_model.bound.preview_report` runs it at 1 kHz and sweeps the preview.
-- :mod:`~loader_model.bound.nonlinear`: multiple shooting on the simulator's own step, IPOPT.
+- :mod:`~loader_model.bound.nonlinear`: the machine's bound, Gauss-Newton SQP in single shooting
+  on the simulator's own period (:mod:`~loader_model.bound.trajectory`: rollout and exact
+  linearisation; :mod:`~loader_model.bound.gauss_newton`: the condensed Gauss-Newton QP).
 - :mod:`~loader_model.bound.replay`: a controller that plays a command table back, and the
   replay through the simulator.
 """

@@ -18,6 +18,7 @@ import numpy as np
 
 from loader_model.bound.constrained import ConstrainedBound, solve_constrained_bound
 from loader_model.bound.linear import LinearBound, solve_linear_bound
+from loader_model.bound.nonlinear import NonlinearBound, solve_nonlinear_bound
 from loader_model.bound.problem import BoundProblem
 from loader_model.io.export import write_atomically
 from loader_model.simulation.result import SimulationResult, seat_signal_names
@@ -35,8 +36,9 @@ __all__ = [
     "write_csv",
 ]
 
-#: The bounds :func:`compare` can solve: the LQ bound without limits, and with the pump's.
-BOUND_KINDS = ("linear", "constrained")
+#: The bounds :func:`compare` can solve: the LQ bound without limits, with the pump's, and the
+#: machine's own (:mod:`~loader_model.bound.nonlinear`, warm-started from the best controller).
+BOUND_KINDS = ("linear", "constrained", "nonlinear")
 
 
 @dataclass(frozen=True)
@@ -63,7 +65,7 @@ class BoundComparison:
 
     title: str
     a_total: dict[str, float]
-    bound: LinearBound | ConstrainedBound
+    bound: LinearBound | ConstrainedBound | NonlinearBound
     bound_kind: str
     runs: dict[str, SimulationResult] = field(repr=False)
     problem: BoundProblem = field(repr=False)
@@ -80,13 +82,21 @@ class BoundComparison:
 
 
 def solve_bound(
-    problem: BoundProblem, kind: str = "linear", *, progress: bool = False
-) -> LinearBound | ConstrainedBound:
-    """The bound ``kind`` (:data:`BOUND_KINDS`) of ``problem``."""
+    problem: BoundProblem,
+    kind: str = "linear",
+    *,
+    progress: bool = False,
+    warm: SimulationResult | None = None,
+) -> LinearBound | ConstrainedBound | NonlinearBound:
+    """The bound ``kind`` (:data:`BOUND_KINDS`) of ``problem``; ``"nonlinear"`` starts from the
+    run ``warm`` (default: the static command)."""
     if kind not in BOUND_KINDS:
         raise ValueError(f"bound must be one of {', '.join(BOUND_KINDS)}; got {kind!r}")
     if kind == "linear":
         return solve_linear_bound(problem)
+    if kind == "nonlinear":
+        start = np.full(problem.intervals, problem.plant.u0) if warm is None else warm
+        return solve_nonlinear_bound(problem, start, progress=progress)
     return solve_constrained_bound(problem, progress=progress)
 
 
@@ -116,7 +126,8 @@ def compare(
             totals[name] = float(runs[name].seat_evaluation().total_m_s2)
             bar.update()
         bar.set_postfix_str(f"{bound} bound")
-        solved = solve_bound(problem, bound, progress=progress)
+        best = min(totals, key=totals.__getitem__)
+        solved = solve_bound(problem, bound, progress=progress, warm=runs[best])
         bar.update()
     return BoundComparison(title, totals, solved, bound, runs, problem)
 

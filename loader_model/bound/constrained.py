@@ -43,7 +43,7 @@ from loader_model.bound.dense_qp import solve_dense_qp
 from loader_model.bound.linear import LinearQuadratic, evaluate, linear_quadratic
 from loader_model.bound.problem import PATH_SIGNALS, BoundProblem
 
-__all__ = ["ConstrainedBound", "path_limits", "solve_constrained_bound"]
+__all__ = ["ConstrainedBound", "generate_constraints", "path_limits", "solve_constrained_bound"]
 
 #: Largest violation accepted, relative to each signal's limit (deviation from static).
 PATH_TOLERANCE = 1e-6
@@ -113,6 +113,60 @@ def _violation(
     return np.maximum(values - upper, lower - values) / scale
 
 
+def generate_constraints(
+    condensed: CondensedProblem,
+    p_matrix: np.ndarray,
+    q_vector: np.ndarray,
+    limits: tuple[np.ndarray, ...],
+    u_low: float,
+    u_high: float,
+    rows: np.ndarray,
+    *,
+    tolerance: float = PATH_TOLERANCE,
+    max_rounds: int = 40,
+    drop_rounds: int = DROP_ROUNDS,
+    bar: object | None = None,
+) -> tuple:
+    """Constraint generation (module notes) on a condensed QP ½ uᵀ P u + qᵀ u with the end
+    condition, the box [u_low, u_high] and the path rows of ``condensed`` (anything with
+    ``path_values``, ``path_rows``, ``path_offset``, ``end_matrix``, ``end_target``: also the
+    nonlinear bound's :class:`~loader_model.bound.gauss_newton.GaussNewtonModel`).
+
+    Returns
+    -------
+    tuple
+        (QPResult, working set, interior-point iterations, rounds, largest violation, converged).
+    """
+    _, lower, upper, scale = limits
+    iterations, rounds, converged, violation = 0, 0, False, np.inf
+    for _ in range(max_rounds):
+        rounds += 1
+        i, s, k = rows[:, 0], rows[:, 1], rows[:, 2]
+        row_scale = scale[k]
+        offset = condensed.path_offset[i, s, k]
+        result = solve_dense_qp(
+            p_matrix, q_vector, condensed.end_matrix, condensed.end_target,
+            condensed.path_rows(i, s, k) / row_scale[:, None],
+            (lower[k] - offset) / row_scale, (upper[k] - offset) / row_scale,
+            u_low, u_high,
+        )  # fmt: skip
+        iterations += result.iterations
+        excess = _violation(condensed, result.u, limits)
+        worst, sub = excess.max(axis=1), excess.argmax(axis=1)
+        violation = float(worst.max())
+        if bar is not None:
+            bar.set_postfix_str(f"rows {len(rows)}, violation {violation:.1e}")
+            bar.update()
+        new_i, new_k = np.nonzero(worst > tolerance)
+        if new_i.size == 0:
+            converged = result.converged
+            break
+        if rounds <= drop_rounds and len(rows):
+            rows = rows[excess[rows[:, 0], rows[:, 1], rows[:, 2]] > -DROP_MARGIN]
+        rows = np.vstack([rows, np.column_stack([new_i, sub[new_i, new_k], new_k])])
+    return result, rows, iterations, rounds, violation, converged
+
+
 def solve_constrained_bound(
     problem: BoundProblem,
     lq: LinearQuadratic | None = None,
@@ -152,7 +206,7 @@ def solve_constrained_bound(
     lq = lq or linear_quadratic(problem)
     condensed = condense(lq, problem.hold_periods)
     limits = path_limits(problem)
-    static, lower, upper, scale = limits
+    static = limits[0]
     n = condensed.intervals
     shape = condensed.path_offset.shape
     rows = np.zeros((0, 3), dtype=int) if working_set is None else np.asarray(working_set, int)
@@ -161,33 +215,12 @@ def solve_constrained_bound(
     q_vector = 2.0 * condensed.gradient / lq.count
     u_low = (problem.u_bounds[0] - problem.plant.u0) / lq.u_scale
     u_high = (problem.u_bounds[1] - problem.plant.u0) / lq.u_scale
-    iterations, rounds, converged, violation = 0, 0, False, np.inf
     bar = tqdm(total=max_rounds, desc="constrained bound", unit="round", disable=not progress)
     with bar:
-        for _ in range(max_rounds):
-            rounds += 1
-            i, s, k = rows[:, 0], rows[:, 1], rows[:, 2]
-            row_scale = scale[k]
-            offset = condensed.path_offset[i, s, k]
-            result = solve_dense_qp(
-                p_matrix, q_vector, condensed.end_matrix, condensed.end_target,
-                condensed.path_rows(i, s, k) / row_scale[:, None],
-                (lower[k] - offset) / row_scale, (upper[k] - offset) / row_scale,
-                u_low, u_high,
-            )  # fmt: skip
-            iterations += result.iterations
-            excess = _violation(condensed, result.u, limits)
-            worst, sub = excess.max(axis=1), excess.argmax(axis=1)
-            violation = float(worst.max())
-            bar.set_postfix_str(f"rows {len(rows)}, violation {violation:.1e}")
-            bar.update()
-            new_i, new_k = np.nonzero(worst > tolerance)
-            if new_i.size == 0:
-                converged = result.converged
-                break
-            if rounds <= drop_rounds and len(rows):
-                rows = rows[excess[rows[:, 0], rows[:, 1], rows[:, 2]] > -DROP_MARGIN]
-            rows = np.vstack([rows, np.column_stack([new_i, sub[new_i, new_k], new_k])])
+        result, rows, iterations, rounds, violation, converged = generate_constraints(
+            condensed, p_matrix, q_vector, limits, u_low, u_high, rows,
+            tolerance=tolerance, max_rounds=max_rounds, drop_rounds=drop_rounds, bar=bar,
+        )  # fmt: skip
     u = result.u
     a_total, end_residual, seat = evaluate(lq, u, problem)
     path = condensed.path_values(u).reshape(n * problem.hold_periods, -1) + static

@@ -9,7 +9,9 @@ non-causal LQ bound on the linearised plant (the road known in advance, no pump 
 :mod:`loader_model.bound.linear`). With ``--output DIR`` writes ``bound.csv`` (the optimal
 command and seat trace beside the best controller's) and ``bound.png``. ``--bound constrained``
 prints the LQ bound with the pump's, pressure and stroke limits instead
-(:mod:`loader_model.bound.constrained`; minutes on the whole course). ``--pump-sizing`` runs
+(:mod:`loader_model.bound.constrained`; minutes on the whole course); ``--bound nonlinear`` the
+machine's own bound on the simulator's discretisation (:mod:`loader_model.bound.nonlinear`,
+warm-started from the best controller's run; give ``--duration``). ``--pump-sizing`` runs
 the pump-sizing study instead of the comparison (:mod:`loader_model.bound.pump_sizing`: the
 constrained bound and the refined skyhook against V_p_max, ω_p and V̇_p,max, Table 2) and writes
 ``pump_sizing.csv`` and ``pump_sizing.png`` to ``--output``.
@@ -62,8 +64,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--bound",
         default="linear",
         metavar="KIND",
-        help="'linear' (no limits, under a second; default) or 'constrained' (the pump's, "
-        "pressure and stroke limits; minutes on the 15 s course)",
+        help="'linear' (no limits, under a second; default), 'constrained' (the pump's, "
+        "pressure and stroke limits on the linear plant; minutes on the 15 s course) or "
+        "'nonlinear' (the machine's own bound in the simulator; use --duration: minutes for "
+        "a few seconds of course)",
     )
     parser.add_argument(
         "--pump-sizing",
@@ -166,6 +170,12 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
         detail = (
             f" ({solved.rounds} rounds, {solved.iterations} interior-point iterations, "
             f"{len(solved.working_set)} path rows, converged: {solved.converged})"
+        )
+    if args.bound == "nonlinear":
+        detail = (
+            f" ({solved.iterations} SQP iterations, {solved.time_per_iteration_s:.1f} s each, "
+            f"{solved.qp_iterations} interior-point iterations, converged: {solved.converged}; "
+            f"warm start a_total {solved.warm_a_total_m_s2:.4f})"
         )
     print(f"{args.bound} bound solved in {solved.solve_s:.2f} s{detail}")
     if args.bound == "constrained":

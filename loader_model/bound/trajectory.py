@@ -1,0 +1,171 @@
+r"""The simulator's own trajectory of a command table, and its exact linearisation period by period.
+
+:func:`rollout` runs the closed-loop period of the simulator
+(:func:`~loader_model.simulation.stepper.compile_period` with the held-command controller, the
+simulator's :data:`~loader_model.simulation.simulator.DEFAULT_SUBSTEPS` ROS2 steps per 1 ms
+period, the road table's samples at the periods' ends) with u_k = u_{⌊k/M⌋}: the same compiled
+arithmetic :func:`~loader_model.bound.replay.replay` runs, so the bound's trajectory is the
+simulator's. :func:`linearise` evaluates, along it, one compiled Function of the same period
+(:func:`linearised_period`) with CasADi's exact Jacobians,
+
+.. math:: \delta x_{k+1} = A_k \delta x_k + B_k \delta u_k, \qquad \delta y_k = C_k \delta x_k
+
+(y_k, the outputs at the period's start, do not depend on u_k), mapped over all periods on
+two threads. Compiling the linearised period to C takes about 130 s once per machine (measured
+on the development machine; cached, :mod:`~loader_model.simulation.compiled`); evaluating it
+took 0.11 ms per period in a batch of 1000 and 0.6 ms per period for the 3 s course's
+:func:`linearise` call (both measured there, the latter with the arrays' reshaping).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import cache
+
+import casadi as ca
+import numpy as np
+
+from loader_model.bound.problem import PATH_SIGNALS, BoundProblem
+from loader_model.plant.plant import OUTPUT_NAMES, STATE_NAMES, plant_function
+from loader_model.simulation.compiled import CompilationError, compiled_function
+from loader_model.simulation.controllers import hold_command_controller
+from loader_model.simulation.result import seat_signal_names
+from loader_model.simulation.simulator import DEFAULT_SUBSTEPS
+from loader_model.simulation.stepper import compile_period, period_function
+
+__all__ = ["Linearisation", "Trajectory", "linearise", "linearised_period", "rollout"]
+
+_CHUNK = 500
+
+
+@dataclass(frozen=True)
+class Trajectory:
+    """One simulated run of a command table.
+
+    Attributes
+    ----------
+    command : numpy.ndarray
+        (N,) u_j in m³/rev.
+    states : numpy.ndarray
+        (K_s + 1, nx) x_k.
+    outputs : numpy.ndarray
+        (K_s + 1, ny) y_k (the last at the end state).
+    """
+
+    command: np.ndarray
+    states: np.ndarray
+    outputs: np.ndarray
+
+    def seat(self) -> np.ndarray:
+        """(K_s, axes) seat samples minus their first (static) value, as the report reads them."""
+        rows = [OUTPUT_NAMES.index(s) for s in seat_signal_names().values()]
+        values = self.outputs[:-1, rows]
+        return values - values[0]
+
+    def path(self) -> np.ndarray:
+        """(K_s, len(PATH_SIGNALS) + 1) the bounded outputs and V̇_p at every period."""
+        rows = [OUTPUT_NAMES.index(s) for s in PATH_SIGNALS]
+        rate = self.states[:-1, STATE_NAMES.index("Vd_p")]
+        return np.column_stack([self.outputs[:-1, rows], rate])
+
+
+@cache
+def _period() -> ca.Function:
+    return compile_period(hold_command_controller(), substeps=DEFAULT_SUBSTEPS)[0]
+
+
+@cache
+def _rolled(chunk: int) -> ca.Function:
+    return _period().mapaccum("bound_roll", chunk)
+
+
+@cache
+def linearised_period() -> ca.Function:
+    """``lin(x, u, w0, w1, params) -> (x_next, y, A, B, C)`` of the simulator's period (notes)."""
+    period = period_function(hold_command_controller(), substeps=DEFAULT_SUBSTEPS)
+    nx, ny, nw = len(STATE_NAMES), period.size1_out(1), period.size1_in(1)
+    x, u = ca.SX.sym("x", nx), ca.SX.sym("u")
+    w0, w1 = ca.SX.sym("w0", nw), ca.SX.sym("w1", nw)
+    params = ca.SX.sym("params", period.size1_in(3))
+    carry, y, _ = period(ca.vertcat(x, u), w0, w1, params, u, ca.SX.zeros(ny), ca.SX.zeros(ny))
+    x_next = carry[:nx]
+    function = ca.Function(
+        "bound_linearised_period",
+        [x, u, w0, w1, params],
+        [x_next, y, ca.jacobian(x_next, x), ca.jacobian(x_next, u), ca.jacobian(y, x)],
+    )
+    try:
+        return compiled_function(function)
+    except CompilationError:  # pragma: no cover - no C compiler: the SX virtual machine
+        return function
+
+
+def rollout(problem: BoundProblem, command: np.ndarray) -> Trajectory:
+    """Simulate ``command`` (N values in m³/rev, each held M periods) from the equilibrium."""
+    command = np.asarray(command, dtype=float).ravel()
+    if command.size != problem.intervals:
+        raise ValueError(f"command must have {problem.intervals} values; got {command.size}")
+    count, plant = problem.periods, problem.plant
+    exo = problem.exogenous
+    u_k = np.repeat(command, problem.hold_periods)
+    nx, ny = len(STATE_NAMES), len(OUTPUT_NAMES)
+    states, outputs = np.empty((count + 1, nx)), np.empty((count + 1, ny))
+    carry = np.concatenate([plant.x0, [plant.u0]])
+    zeros = np.zeros(ny)
+    for start in range(0, count, _CHUNK):
+        size = min(_CHUNK, count - start)
+        rows = np.arange(start, start + _CHUNK).clip(max=count - 1)
+        settings = u_k[rows][None, :]
+        out = _rolled(_CHUNK)(
+            carry, exo[rows].T, exo[rows + 1].T, np.tile(plant.params[:, None], (1, _CHUNK)),
+            settings, np.zeros((ny, _CHUNK)), np.tile(zeros[:, None], (1, _CHUNK)),
+        )  # fmt: skip
+        block = np.asarray(out[0]).T
+        states[start] = carry[:nx]
+        states[start + 1 : start + size] = block[: size - 1, :nx]
+        outputs[start : start + size] = np.asarray(out[1]).T[:size]
+        carry = block[size - 1]
+    states[count] = carry[:nx]
+    outputs[count] = np.asarray(
+        plant_function()(carry[:nx], carry[nx], exo[count], plant.params)[1]
+    ).ravel()
+    if not np.all(np.isfinite(states)):
+        raise ValueError("command: the simulated trajectory left the finite numbers")
+    return Trajectory(command, states, outputs)
+
+
+@dataclass(frozen=True)
+class Linearisation:
+    """A_k (K_s, nx, nx), B_k (K_s, nx) and C_k (K_s + 1, ny, nx) along a trajectory."""
+
+    a: np.ndarray
+    b: np.ndarray
+    c: np.ndarray
+
+
+def linearise(problem: BoundProblem, trajectory: Trajectory) -> Linearisation:
+    """The exact Jacobians of the simulator's period along ``trajectory`` (module notes)."""
+    count, nx = problem.periods, len(STATE_NAMES)
+    function = linearised_period()
+    mapped = function.map(_CHUNK, "thread", 2)
+    exo, params = problem.exogenous, problem.plant.params
+    u_k = np.append(np.repeat(trajectory.command, problem.hold_periods), trajectory.command[-1])
+    a = np.empty((count, nx, nx))
+    b = np.empty((count, nx))
+    c = np.empty((count + 1, len(OUTPUT_NAMES), nx))
+    tiled = np.tile(params[:, None], (1, _CHUNK))
+    for start in range(0, count + 1, _CHUNK):
+        size = min(_CHUNK, count + 1 - start)
+        rows = np.arange(start, start + _CHUNK).clip(max=count)
+        _, _, a_out, b_out, c_out = mapped(
+            trajectory.states[rows].T, u_k[rows][None, :], exo[rows].T,
+            exo[(rows + 1).clip(max=count)].T, tiled,
+        )  # fmt: skip
+        a_blk = np.asarray(a_out).reshape(nx, _CHUNK, nx).transpose(1, 0, 2)
+        c_blk = np.asarray(c_out).reshape(-1, _CHUNK, nx).transpose(1, 0, 2)
+        stop = min(size, count - start)
+        if stop > 0:
+            a[start : start + stop] = a_blk[:stop]
+            b[start : start + stop] = np.asarray(b_out).T[:stop]
+        c[start : start + size] = c_blk[:size]
+    return Linearisation(a, b, c)
