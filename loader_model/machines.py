@@ -108,6 +108,9 @@ class MachineInfo:
     joint_coordinates: tuple[tuple[str, str], ...]
     """Per joint angle: (the body's angle coordinate, its parent's), the angle their difference
     (a sliding mount turns with its parent)."""
+    length_coordinates: tuple[str, ...]
+    """The coordinates in m (the chassis' x and y, the sliding mounts' travel); the others are
+    angles in rad."""
     axles: tuple[str, ...]
     """Axle points, front first (the order of the road inputs)."""
     cylinders: tuple[Cylinder, ...]
@@ -123,6 +126,12 @@ class MachineInfo:
     cylinders and sliding mounts)."""
     description_path: Path
     description_hash: str
+
+    def coordinate_unit(self, name: str) -> str:
+        """The unit of coordinate ``name``: m for a length (:attr:`length_coordinates`), else rad."""
+        if name not in self.coordinate_names:
+            raise ValueError(f"coordinate {name!r}: allowed: {list(self.coordinate_names)}")
+        return "m" if name in self.length_coordinates else "rad"
 
     @property
     def n_coordinates(self) -> int:
@@ -270,6 +279,10 @@ def _structure(raw: dict[str, Any]) -> dict[str, Any]:
             (body["coordinate"], _angle_coordinate(bodies, body["parent"]))
             for body in bodies.values()
             if "joint_angle" in body
+        ),
+        "length_coordinates": (
+            *chassis["coordinates"][:2],
+            *(body["coordinate"] for body in bodies.values() if body["joint"] == "slider"),
         ),
         "axles": axles,
         "cylinders": cylinders,

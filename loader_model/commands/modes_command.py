@@ -46,5 +46,6 @@ def _run_machine(args: argparse.Namespace, info) -> int:
     )
     result = modal_analysis(matrices.mass, matrices.stiffness)
     title = f"{info.title} ({args.params or 'shipped values'}), bucket load {args.load}"
-    print(format_machine_modes(title, matrices, result))
+    units = [info.coordinate_unit(name) for name in matrices.coordinate_names]
+    print(format_machine_modes(title, matrices, result, units))
     return 0

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 from loader_model.modal.modes import TABLE_1, ModalResult, compare_with_table_1
 from loader_model.modal.undamped import UndampedMatrices
 
@@ -57,11 +59,24 @@ def format_modes(title: str, matrices: UndampedMatrices, result: ModalResult) ->
     return "\n".join(lines)
 
 
-def format_machine_modes(title: str, matrices: UndampedMatrices, result: ModalResult) -> str:
+def format_machine_modes(
+    title: str,
+    matrices: UndampedMatrices,
+    result: ModalResult,
+    units: Sequence[str] | None = None,
+) -> str:
     """Frequencies, momentum shapes M·φ and displacement shapes φ of a machine without a paper
-    reference (the layout of :func:`format_modes` without the paper's columns)."""
+    reference (the layout of :func:`format_modes` without the paper's columns).
+
+    ``units`` gives each coordinate's unit (the machine's ``coordinate_unit``); without it a
+    name starting with x or y is read as a length in m, any other as an angle in rad.
+    """
     names = matrices.coordinate_names
-    labels = [f"{n} [{'m' if n[0] in 'xy' else 'rad'}]" for n in names]
+    if units is None:
+        units = ["m" if n[0] in "xy" else "rad" for n in names]
+    if len(units) != len(names):
+        raise ValueError(f"units: {len(units)} given for the {len(names)} coordinates {names}")
+    labels = [f"{n} [{unit}]" for n, unit in zip(names, units, strict=True)]
     count = result.frequencies_hz.size
     header = f"{'':14}" + "".join(f"{f'mode {k + 1}':>10}" for k in range(count))
 

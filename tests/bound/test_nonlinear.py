@@ -32,6 +32,7 @@ def nonlinear(plant, problem, constrained):
     return solve_nonlinear_bound(problem, plant.u0 + constrained.command)
 
 
+@pytest.mark.slow  # compiles the linearised period to C: 127 s once per machine (cached)
 def test_gauss_newton_gradient_matches_finite_differences(plant, road):
     """The model's gradient of a_total² (exact Jacobians along the simulated trajectory)
     against central differences of the simulated a_total² on a 0.6 s problem, to 1e-4 of the

@@ -266,3 +266,17 @@ def test_commands_that_assume_two_axles_refuse_three(
     assert main(argv) == 2
     err = capsys.readouterr().err
     assert message in err and "'three_axle_cab' has 3 (A, B, R)" in err and "Traceback" not in err
+
+
+def test_modes_command_labels_the_sliding_mount_in_metres(
+    files: tuple[Path, Path], capsys: pytest.CaptureFixture[str]
+) -> None:
+    """`loader-model modes --machine FILE`: the cab's travel is a length (m), the pinned bodies'
+    coordinates angles (rad), from the description's joints, not from the coordinate names."""
+    from loader_model.cli import main
+
+    description, params = files
+    assert main(["modes", "--machine", str(description), "--params", str(params)]) == 0
+    out = capsys.readouterr().out
+    assert "s_cab [m]" in out and "s_cab [rad]" not in out
+    assert "theta_2 [rad]" in out and "x_H [m]" in out

@@ -133,3 +133,15 @@ def test_wheel_loader_dynamics_from_its_metadata() -> None:
         model.mass_matrix([0, 0, 0, 0, 4.0])
     with pytest.raises(ValueError, match="model parameter m_3 = 1e-06 is out of range"):
         LoaderDynamics({**params.model, "m_3": 1e-6}, machine="compact_wheel_loader")
+
+
+def test_coordinate_units_come_from_the_joints() -> None:
+    """The chassis' x_H, y_H are lengths, pinned bodies' coordinates angles; an unknown
+    coordinate is refused naming it."""
+    from loader_model.machines import machine
+
+    info = machine("compact_wheel_loader")
+    units = [info.coordinate_unit(name) for name in info.coordinate_names]
+    assert units == ["m", "m", "rad", "rad", "rad"]
+    with pytest.raises(ValueError, match="coordinate 'theta_9': allowed"):
+        info.coordinate_unit("theta_9")
