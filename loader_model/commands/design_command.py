@@ -142,17 +142,9 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
         raise ValueError(f"--speed {args.speed:g} with --method refine: allowed: 9 or 18 km/h")
     if args.evaluations < 1:
         raise ValueError(f"--evaluations {args.evaluations}: allowed: an integer >= 1")
-    from loader_model.machines import machine as machine_info
     from loader_model.machines import resolve_machine_name
 
     machine = resolve_machine_name(getattr(args, "machine", "skid_steer"))
-    axles = machine_info(machine).axles
-    if len(axles) != 2:  # the comfort plant's road model feeds w_Ay and w_By only
-        raise ValueError(
-            f"--machine {args.machine}: design drives two axles (the road model of "
-            f"loader_model.control.road_filter); machine {machine!r} has {len(axles)} "
-            f"({', '.join(axles)}); simulate it with a given controller instead"
-        )
     from loader_model.control.comfort_design import (
         TABLE3_GAIN,
         TABLE3_PRINTED_GAIN,

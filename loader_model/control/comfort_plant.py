@@ -218,7 +218,9 @@ def comfort_system(
     named = dict(zip(layout.parameter_names, case.params, strict=True))
     first, last = layout.machine.axles[0], layout.machine.axles[-1]
     wheelbase = float(named[f"{first}_x"] - named[f"{last}_x"])
-    road = road_shaping_filter(road_class, speed_m_s, wheelbase, rear, pade_order)
+    road = road_shaping_filter(
+        road_class, speed_m_s, wheelbase, rear, pade_order, axles=layout.machine.axles
+    )
     weights = seat_weightings()
     plant = case.plant.name
     noise = list(road.input_labels)

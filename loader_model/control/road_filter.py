@@ -39,6 +39,7 @@ are driven.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -83,43 +84,69 @@ def road_shaping_filter(
     wheelbase_m: float,
     rear: str = "independent",
     pade_order: int = 4,
+    axles: Sequence[str] = ("A", "B"),
 ) -> Any:
-    """python-control ``StateSpace`` of the road under both axles, driven by unit white noise.
+    """python-control ``StateSpace`` of the road under the axles, driven by unit white noise.
 
     Parameters
     ----------
     road_class, speed_m_s
         ISO 8608 class ``"A"``-``"H"`` and travel speed [m/s].
     wheelbase_m
-        L = A_x − B_x [m]; the rear delay is L / v.
+        L = A_x − B_x [m] (front to rearmost axle); the rear delay is L / v.
     rear
         ``"pade"``: h_B is h_A through the Padé approximant of order ``pade_order`` (inputs
-        ``nu_road``); ``"independent"``: h_B is a second, independent filter of the same
-        PSD (inputs ``nu_road``, ``nu_rear``), the limit of the exact delay where ωL/v ≫ 1.
+        ``nu_road``; two axles only); ``"independent"``: every axle behind the front one has
+        its own independent filter of the same PSD (inputs ``nu_road``, ``nu_rear``, then
+        ``nu_rear_<axle>`` for a third axle on), the limit of the exact delay where ωL/v ≫ 1.
+    axles
+        The machine's axle points, front first (two or more); the outputs are each axle's
+        ``w_<axle>y`` and ``wd_<axle>y``.
 
     Returns
     -------
     control.StateSpace
-        Outputs :data:`ROAD_OUTPUTS`; states ``h_A`` then ``h_B`` or the Padé states.
+        Outputs :data:`ROAD_OUTPUTS` for axles A and B (``w_<axle>y``, ``wd_<axle>y`` per
+        axle in general); states ``h_<axle>`` per axle or ``h_A`` then the Padé states.
     """
     import control
 
     a, q = road_filter_coefficients(road_class, speed_m_s)
     if not (math.isfinite(wheelbase_m) and 0.1 <= wheelbase_m <= 10.0):
         raise ValueError(f"wheelbase = {wheelbase_m!r} m; allowed: 0.1 to 10 m")
+    axles = tuple(axles)
+    if (
+        len(axles) < 2
+        or len(set(axles)) != len(axles)
+        or not all(isinstance(n, str) for n in axles)
+    ):
+        raise ValueError(f"axles = {axles!r}; allowed: two or more distinct axle names")
+    outputs = [f"{kind}_{axle}y" for axle in axles for kind in ("w", "wd")]
     if rear == "independent":
+        count = len(axles)
+        c_matrix = np.zeros((2 * count, count))
+        d_matrix = np.zeros((2 * count, count))
+        for i in range(count):
+            c_matrix[2 * i, i], c_matrix[2 * i + 1, i] = 1.0, -a
+            d_matrix[2 * i + 1, i] = q
+        noise = ["nu_road", "nu_rear", *(f"nu_rear_{axle}" for axle in axles[2:])]
         return control.ss(
-            -a * np.eye(2),
-            q * np.eye(2),
-            np.array([[1.0, 0.0], [-a, 0.0], [0.0, 1.0], [0.0, -a]]),
-            q * np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 0.0], [0.0, 1.0]]),
-            inputs=["nu_road", "nu_rear"],
-            outputs=list(ROAD_OUTPUTS),
-            states=["h_A", "h_B"],
+            -a * np.eye(count),
+            q * np.eye(count),
+            c_matrix,
+            d_matrix,
+            inputs=noise,
+            outputs=outputs,
+            states=[f"h_{axle}" for axle in axles],
             name="road",
         )
     if rear != "pade":
         raise ValueError(f"rear = {rear!r}; allowed: 'independent', 'pade'")
+    if len(axles) != 2:
+        raise ValueError(
+            f"rear = 'pade' delays one rear axle; the machine has {len(axles)} axles "
+            f"({', '.join(axles)}): use rear = 'independent'"
+        )
     if not isinstance(pade_order, int) or not 1 <= pade_order <= 8:
         raise ValueError(f"pade_order = {pade_order!r}; allowed: an integer 1 to 8")
     delay = control.ss(control.tf(*control.pade(wheelbase_m / speed_m_s, pade_order)))
@@ -144,7 +171,7 @@ def road_shaping_filter(
         c_all,
         d_all,
         inputs=["nu_road"],
-        outputs=list(ROAD_OUTPUTS),
-        states=["h_A", *(f"pade_{i}" for i in range(n))],
+        outputs=outputs,
+        states=[f"h_{axles[0]}", *(f"pade_{i}" for i in range(n))],
         name="road",
     )

@@ -77,6 +77,32 @@ def test_pade_rear_axle_is_an_all_pass_with_the_delay_at_low_frequency() -> None
     np.testing.assert_allclose(rear / front, np.exp(-2j * np.pi * f * 1.2 / 2.5), atol=2e-3)
 
 
+def test_independent_tracks_for_every_axle() -> None:
+    """Three axles: one independent filter per axle, each output of the ISO 8608 PSD (the same
+    closed form as the front axle's), each driven by its own noise input only; the two-axle
+    filter keeps its names; the Padé delay (one rear axle) refuses three axles, naming them."""
+    speed, n = 2.5, np.geomspace(0.11, 2.83, 20)
+    road = road_shaping_filter("C", speed, 3.0, axles=("A", "B", "R"))
+    assert list(road.input_labels) == ["nu_road", "nu_rear", "nu_rear_R"]
+    assert list(road.output_labels) == ["w_Ay", "wd_Ay", "w_By", "wd_By", "w_Ry", "wd_Ry"]
+    for k, axle in enumerate("ABR"):
+        response = road(2j * np.pi * speed * n)  # (outputs, inputs, frequencies)
+        row = list(road.output_labels).index(f"w_{axle}y")
+        temporal = 2.0 * np.abs(response[row, k]) ** 2
+        np.testing.assert_allclose(temporal * speed, displacement_psd(n, "C"), rtol=0.01)
+        others = [j for j in range(3) if j != k]
+        assert np.abs(response[row, others]).max() == 0.0
+    two = road_shaping_filter("C", speed, 1.2)
+    assert list(two.input_labels) == ["nu_road", "nu_rear"]
+    assert list(two.state_labels) == ["h_A", "h_B"]
+    with pytest.raises(
+        ValueError, match=r"rear = 'pade' delays one rear axle; .* 3 axles \(A, B, R\)"
+    ):
+        road_shaping_filter("C", speed, 3.0, rear="pade", axles=("A", "B", "R"))
+    with pytest.raises(ValueError, match=r"axles = \('A',\); allowed: two or more"):
+        road_shaping_filter("C", speed, 3.0, axles=("A",))
+
+
 def test_weightings_in_the_loop_equal_iso2631() -> None:
     f = np.array([0.5, 1.0, 4.0, 8.0, 16.0, 63.0])
     for block, (_, _, weighting, k) in zip(seat_weightings(), PERFORMANCE_K, strict=True):
