@@ -206,7 +206,10 @@ def comfort_system(
 ) -> Any:
     """Interconnected ``StateSpace`` of the design (module docstring).
 
-    Inputs: ``p_ref_n`` (control r), ``nu_road`` (unit white noise), ``M_d`` [N·m] (Fig. 12).
+    Inputs: ``p_ref_n`` (control r), the road's unit white noise (``nu_road`` and, with
+    ``rear="independent"``, ``nu_rear`` and ``nu_rear_<axle>`` for every further axle of the
+    machine: :func:`~loader_model.control.road_filter.road_shaping_filter`), ``M_d`` [N·m]
+    (Fig. 12).
     Outputs: :data:`MEASURED`, :data:`PERFORMANCE`, then ``V_p``, ``p_A``, ``thetad_1``,
     ``thetadd_1``, ``V_p_ref`` (unweighted, for limits and plots).
     """
