@@ -72,11 +72,6 @@ def run(args: argparse.Namespace) -> int:
             "(give --controller skyhook or virtual-accumulator)"
         )
     info = machine_from_arguments(args)
-    if len(info.axles) != 2:  # the FMU's variable tables name the road inputs of A and B
-        raise ValueError(
-            f"--machine {args.machine}: export-fmu exports machines with two axles (front A, "
-            f"rear B); machine {info.name!r} has {len(info.axles)} ({', '.join(info.axles)})"
-        )
     if not info.is_default:
         return _run_machine(args, info.name)
     from loader_model.plant.plant_parameters import plant_parameter_vector

@@ -44,6 +44,7 @@ from loader_model.plant.plant_parameters import (
     PLANT_PARAMETER_NAMES,
     PLANT_PARAMETER_UNITS,
 )
+from loader_model.simulation.result import column_unit
 
 __all__ = [
     "COMPLETED_PARAMETERS",
@@ -157,7 +158,7 @@ def _exogenous_description(name: str) -> str:
     if name.startswith("w"):
         axle, direction = name[-2], "vertical" if name[-1] == "y" else "horizontal"
         what = "rate of the road" if name.startswith("wd_") else "road"
-        return f"{what} under the {_AXLE[axle]}, {direction}"
+        return f"{what} under the {_AXLE.get(axle, f'axle {axle}')}, {direction}"
     return {
         "F_dx": "disturbance force at H, forward (Eq. 5)",
         "F_dy": "disturbance force at H, up (Eq. 6)",
@@ -236,7 +237,7 @@ def fmu_variables(
                 "input",
                 "continuous",
                 "",
-                _EXOGENOUS_UNITS[name],
+                _EXOGENOUS_UNITS.get(name) or column_unit(name),
                 _exogenous_description(name),
                 0.0,
             )

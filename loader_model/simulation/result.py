@@ -27,6 +27,7 @@ __all__ = [
     "RESULT_SUFFIXES",
     "Event",
     "SimulationResult",
+    "column_unit",
     "seat_signal_names",
 ]
 
@@ -96,6 +97,12 @@ _AXLE_UNITS = (  # the columns of any axle <X>: (pattern, unit)
 def _axle_unit(name: str) -> str:
     """Unit of an axle's column not in :data:`COLUMN_UNITS` (a third axle's), else ``"-"``."""
     return next((unit for pattern, unit in _AXLE_UNITS if pattern.fullmatch(name)), "-")
+
+
+def column_unit(name: str) -> str:
+    """Unit of a simulation column or plant signal ``name``: :data:`COLUMN_UNITS`, else any
+    axle's tyre, anchor and road signals by their name pattern, else ``"-"``."""
+    return COLUMN_UNITS.get(name) or _axle_unit(name)
 
 
 def seat_signal_names() -> dict[str, str]:
@@ -181,7 +188,7 @@ class SimulationResult:
     def unit(self, name: str) -> str:
         """Unit of column ``name`` (any axle's tyre and road columns by their pattern, ``"-"``
         for the controller's state and other columns of no listed unit)."""
-        return COLUMN_UNITS.get(name) or _axle_unit(name)
+        return column_unit(name)
 
     def seat_record(self) -> object:
         """The seat's accelerations as an ISO 2631 record: x = f_Px, z = f_Py, pitch = θ̈1.

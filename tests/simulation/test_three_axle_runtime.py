@@ -249,17 +249,62 @@ def test_lift_off_events_and_airborne_check_cover_every_axle(plant, board_run) -
     assert "all 3 tyres off the ground (F_Ay = F_By = F_Ry = 0)" in violation.describe()
 
 
-def test_export_fmu_refuses_three_axles(
-    files: tuple[Path, Path], capsys: pytest.CaptureFixture[str]
-) -> None:
+def test_export_fmu_carries_every_axle(files: tuple[Path, Path], tmp_path: Path) -> None:
+    """`export-fmu --machine FILE`: the plant FMU of the three-axle machine has the third
+    axle's road inputs and tyre output, starts at the static equilibrium, and its derivatives
+    off the equilibrium equal the plant Function's (to 1e-9 of each derivative plus its
+    state's nominal, the wheel loader's FMU tolerance)."""
+    import ctypes
+
+    fmpy = pytest.importorskip("fmpy")
+    fmi2 = pytest.importorskip("fmpy.fmi2")
     from loader_model.cli import main
+    from loader_model.plant.plant import plant_function
 
     description, params = files
-    argv = ["export-fmu", "--machine", str(description), "--params", str(params), "m.fmu"]
-    assert main(argv) == 2
-    err = capsys.readouterr().err
-    assert "export-fmu exports machines with two axles" in err
-    assert "'three_axle_cab' has 3 (A, B, R)" in err and "Traceback" not in err
+    target = tmp_path / "three_axle.fmu"
+    argv = ["export-fmu", "--machine", str(description), "--params", str(params)]
+    assert main([*argv, "--controller", "none", str(target)]) == 0
+    model = fmpy.read_model_description(str(target), validate=True)
+    by_name = {v.name: v for v in model.modelVariables}
+    assert {"w_Ry", "wd_Ry", "F_Ry"} <= set(by_name)
+    assert by_name["w_Ry"].description == "road under the axle R, vertical"
+    plant = _plant_of(files)
+    layout, n = plant.layout, len(plant.layout.state_names)
+    fmu = fmi2.FMU2Model(
+        guid=model.guid,
+        unzipDirectory=fmpy.extract(str(target)),
+        modelIdentifier=model.modelExchange.modelIdentifier,
+        instanceName="three_axle",
+    )
+    fmu.instantiate()
+    fmu.setupExperiment(startTime=0.0)
+    fmu.enterInitializationMode()
+    fmu.exitInitializationMode()
+    fmu.enterContinuousTimeMode()
+    states = np.zeros(n)
+    fmu.getContinuousStates(states.ctypes.data_as(ctypes.POINTER(ctypes.c_double)), n)
+    nominals = np.array([float(by_name[f"x.{name}"].nominal) for name in layout.state_names])
+    moved = plant.x0 + 0.01 * nominals * np.cos(np.arange(n))
+    fmu.setContinuousStates(moved.ctypes.data_as(ctypes.POINTER(ctypes.c_double)), n)
+    derivatives = np.zeros(n)
+    fmu.getDerivatives(derivatives.ctypes.data_as(ctypes.POINTER(ctypes.c_double)), n)
+    fmu.terminate()
+    fmu.freeInstance()
+    w = np.zeros(len(layout.exogenous_names))
+    expected = np.asarray(
+        plant_function(layout.machine.name)(moved, plant.u0, w, plant.params)[0]
+    ).ravel()
+    np.testing.assert_allclose(states, plant.x0, rtol=1e-12, atol=1e-12 * nominals.max())
+    assert np.max(np.abs(expected)) > 1e-3  # off the equilibrium
+    assert np.all(np.abs(derivatives - expected) <= 1e-9 * (np.abs(expected) + nominals))
+
+
+def _plant_of(files: tuple[Path, Path]):
+    from loader_model.plant.scenario import resolve_plant
+
+    description, params = files
+    return resolve_plant(params, "empty", machine=str(description))
 
 
 def test_comfort_design_drives_every_axle(files: tuple[Path, Path], tmp_path: Path) -> None:
