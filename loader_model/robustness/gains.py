@@ -44,7 +44,7 @@ def _row(gain: Any) -> tuple[float, ...]:
     return tuple(float(g) for g in np.asarray(gain, dtype=float).ravel())
 
 
-def _sample_design_parameters(spec: SampleSpec, machine: str) -> Any:
+def _sample_design_parameters(spec: SampleSpec, machine: str, params_path: str | None) -> Any:
     """The sample's plant vector (skid-steer) or resolved plant (another machine)."""
     if machine == "skid_steer":
         from loader_model.robustness.sampling import sample_plant_vector
@@ -52,7 +52,7 @@ def _sample_design_parameters(spec: SampleSpec, machine: str) -> Any:
         return sample_plant_vector(spec)[0]
     from loader_model.robustness.machine_study import machine_sample_plant
 
-    return machine_sample_plant(spec, machine)
+    return machine_sample_plant(spec, machine, params_path)
 
 
 def _nominal_parameters(study: Study) -> dict[str, Any] | None:
@@ -61,7 +61,7 @@ def _nominal_parameters(study: Study) -> dict[str, Any] | None:
         return None
     from loader_model.plant.scenario import resolve_plant
 
-    return {load: resolve_plant(None, load, machine=study.machine) for load in study.loads}
+    return {load: resolve_plant(study.params, load, machine=study.machine) for load in study.loads}
 
 
 def robust_gain(study: Study) -> tuple[tuple[float, ...], list[SampleSpec]]:
@@ -77,7 +77,7 @@ def robust_gain(study: Study) -> tuple[tuple[float, ...], list[SampleSpec]]:
     plants = []
     for spec in specs:
         try:
-            params = _sample_design_parameters(spec, study.machine)
+            params = _sample_design_parameters(spec, study.machine, study.params)
         except ValueError:
             continue
         speed = spec.speed_kmh * spec.speed_factor

@@ -29,6 +29,7 @@ __all__ = [
     "machine_sample_parameters",
     "machine_sample_plant",
     "study_machine",
+    "study_params",
 ]
 
 
@@ -44,15 +45,45 @@ def _scalar_fields(cls: type, names: tuple[str, ...] | None = None) -> dict[str,
 
 
 def study_machine(value: Any) -> str:
-    """The machine name of ``[study] machine`` (ValueError naming the key and the allowed ones)."""
+    """The machine of ``[study] machine``: a generated machine's name, or the absolute path of
+    a description file outside the package (so that every worker process resolves the same
+    file; :mod:`loader_model.machine_packages`). ValueError naming the key and the allowed ones.
+    """
+    from pathlib import Path
+
     from loader_model.machines import list_machines, resolve_machine_name
 
     if not isinstance(value, str):
         raise ValueError(f"study.machine = {value!r}: allowed: one of {list(list_machines())}")
     try:
-        return resolve_machine_name(value)
+        name = resolve_machine_name(value)
     except ValueError as error:
         raise ValueError(f"study.machine = {value!r}: {error}") from None
+    return name if name in list_machines() else str(Path(value).resolve())
+
+
+def study_params(value: Any, machine: str) -> str | None:
+    """The checked ``[study] params`` of ``machine`` (a flat parameter file's absolute path, or
+    None for the shipped one); ValueError naming the key, the value and what is allowed."""
+    from pathlib import Path
+
+    from loader_model.machines import list_machines
+
+    if value is None:
+        if machine not in list_machines():
+            raise ValueError(
+                f"study.params: missing key; machine {machine!r} comes from a description file "
+                "and ships no parameter file: give its flat parameter file (TOML)"
+            )
+        return None
+    if machine == "skid_steer":
+        raise ValueError(
+            f"study.params = {value!r}: allowed only for another machine than the skid-steer "
+            "(whose uncertain parameters are paths of its grouped files)"
+        )
+    if not isinstance(value, str) or not Path(value).is_file():
+        raise ValueError(f"study.params = {value!r}: allowed: the path of an existing file")
+    return str(Path(value).resolve())
 
 
 def machine_parameter_field(path: str, machine: str) -> tuple[str, Any]:
@@ -100,12 +131,15 @@ def machine_parameter_field(path: str, machine: str) -> tuple[str, Any]:
     )
 
 
-def machine_sample_parameters(spec: SampleSpec, machine: str) -> Any:
-    """The machine's shipped :class:`~loader_model.parameters.machine_files.MachineParameters`
-    with the sample's values (module notes)."""
-    from loader_model.parameters.machine_files import default_machine_parameters
+def machine_sample_parameters(
+    spec: SampleSpec, machine: str, params_path: str | None = None
+) -> Any:
+    """The machine's :class:`~loader_model.parameters.machine_files.MachineParameters` (its
+    flat file ``params_path``, default the shipped one) with the sample's values (module
+    notes)."""
+    from loader_model.parameters.machine_files import resolve_machine_parameters
 
-    params = default_machine_parameters(machine_info(machine).name)
+    params = resolve_machine_parameters(machine_info(machine).name, params_path)
     values = [(p, v) for p, v in spec.values if not p.startswith("sensors.")]
     model = {p.removeprefix("model."): v for p, v in values if p.startswith("model.")}
     cylinders = {p.removeprefix("cylinders."): v for p, v in values if p.startswith("cylinders.")}
@@ -125,7 +159,9 @@ def machine_sample_parameters(spec: SampleSpec, machine: str) -> Any:
     )
 
 
-def machine_sample_plant(spec: SampleSpec, machine: str) -> PlantScenario:
+def machine_sample_plant(
+    spec: SampleSpec, machine: str, params_path: str | None = None
+) -> PlantScenario:
     """The sample's plant of ``machine`` (accumulator shut; its load case ``spec.load``).
 
     Raises
@@ -135,5 +171,5 @@ def machine_sample_plant(spec: SampleSpec, machine: str) -> PlantScenario:
     """
     from loader_model.plant.scenario import resolve_plant
 
-    params = machine_sample_parameters(spec, machine)
-    return resolve_plant(params, spec.load, machine=machine_info(machine).name)
+    params = machine_sample_parameters(spec, machine, params_path)
+    return resolve_plant(params, spec.load, machine=machine)

@@ -148,7 +148,9 @@ def sample_plant_vector(spec: SampleSpec) -> tuple[np.ndarray, Any]:
     return plant_parameter_vector(loader, load, check=True), load
 
 
-def sample_plant(spec: SampleSpec, machine: str = "skid_steer") -> PlantScenario:
+def sample_plant(
+    spec: SampleSpec, machine: str = "skid_steer", params_path: str | None = None
+) -> PlantScenario:
     """The sample's plant (accumulator shut), resolved once: the vector of
     :func:`sample_plant_vector` with its static equilibrium
     (:func:`~loader_model.plant.scenario.resolve_plant`).
@@ -161,6 +163,8 @@ def sample_plant(spec: SampleSpec, machine: str = "skid_steer") -> PlantScenario
         The described machine (default the skid-steer); another machine's plant comes from its
         flat parameter file
         (:func:`~loader_model.robustness.machine_study.machine_sample_plant`).
+    params_path : str, optional
+        That flat file (``[study] params``; default the machine's shipped one).
 
     Raises
     ------
@@ -172,5 +176,5 @@ def sample_plant(spec: SampleSpec, machine: str = "skid_steer") -> PlantScenario
     if machine != "skid_steer":
         from loader_model.robustness.machine_study import machine_sample_plant
 
-        return machine_sample_plant(spec, machine)
+        return machine_sample_plant(spec, machine, params_path)
     return resolve_plant(*_sample_sets(spec))

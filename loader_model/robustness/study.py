@@ -20,7 +20,11 @@ from pathlib import Path
 from typing import Any
 
 from loader_model.robustness.distributions import Distribution, parse_distribution
-from loader_model.robustness.machine_study import machine_parameter_field, study_machine
+from loader_model.robustness.machine_study import (
+    machine_parameter_field,
+    study_machine,
+    study_params,
+)
 
 __all__ = [
     "COMPARED_CONTROLLERS",
@@ -84,7 +88,12 @@ class Study:
         Uncertain parameters by parameter-file path, in the study file's order.
     machine : str
         The machine (``[study] machine``, default the skid-steer); another machine's parameters
-        are its flat file's paths (:mod:`~loader_model.robustness.machine_study`).
+        are its flat file's paths (:mod:`~loader_model.robustness.machine_study`); a
+        description file outside the package is held as its absolute path.
+    params : str or None
+        ``[study] params``: another machine's flat parameter file, resolved against the working
+        folder (default the machine's shipped file; required for a machine from a description
+        file, which ships none).
     """
 
     name: str
@@ -105,6 +114,7 @@ class Study:
     robust_plants: int
     parameters: tuple[tuple[str, Distribution], ...]
     machine: str = "skid_steer"
+    params: str | None = None
 
     @property
     def controllers(self) -> tuple[str, ...]:
@@ -253,9 +263,10 @@ def _table(data: Mapping[str, Any], name: str) -> dict[str, Any]:
 def _build(data: dict[str, Any], load_cases: tuple[str, ...], course_speeds: tuple) -> Study:
     _keys(data, _SECTIONS, "")
     study = _table(data, "study")
-    keys = ("name", "seed", "samples", "sampling", "duration_s", "batch_size", "machine")
+    keys = ("name", "seed", "samples", "sampling", "duration_s", "batch_size", "machine", "params")
     _keys(study, keys, "study.")
     machine = study_machine(study.get("machine", "skid_steer"))
+    params = study_params(study.get("params"), machine)
     if "samples" not in study:
         raise ValueError("study.samples: missing key (the number of samples, >= 1)")
     samples = _integer(study["samples"], "study.samples", 1, 10_000_000)
@@ -320,6 +331,7 @@ def _build(data: dict[str, Any], load_cases: tuple[str, ...], course_speeds: tup
         ),
         parameters=tuple(varied),
         machine=machine,
+        params=params,
     )
 
 

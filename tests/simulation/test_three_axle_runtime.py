@@ -344,3 +344,45 @@ def test_modes_command_labels_the_sliding_mount_in_metres(
     out = capsys.readouterr().out
     assert "s_cab [m]" in out and "s_cab [rad]" not in out
     assert "theta_2 [rad]" in out and "x_H [m]" in out
+
+
+def test_robustness_study_of_the_description_file_in_worker_processes(
+    files: tuple[Path, Path], tmp_path: Path
+) -> None:
+    """`[study] machine` = the description file and `[study] params` = its flat file: two
+    worker processes (each resolves the file again) run the baseline, the Table 3 skyhook and
+    gains designed on the machine's own comfort plants; without `params` the study is refused
+    naming the key."""
+    from loader_model.robustness.engine import run_study
+    from loader_model.robustness.study import parse_study
+
+    description, params = files
+    text = f"""
+[study]
+machine = "{description}"
+params = "{params}"
+seed = 3
+samples = 2
+duration_s = 3.0
+batch_size = 1
+[conditions]
+speeds_kmh = [9.0]
+loads = ["empty"]
+[controllers]
+compare = ["skyhook"]
+gains = {{ lqr = "lqr" }}
+[parameters]
+"hydraulics.bulk_modulus" = {{ distribution = "uniform", low = 0.8e9, high = 1.8e9, unit = "Pa" }}
+"""
+    study = parse_study(text)
+    assert study.machine == str(description.resolve()) and study.params == str(params.resolve())
+    rows = run_study(study, tmp_path / "study", workers=2, progress=False).to_pylist()
+    assert len(rows) == 2 * 3  # 2 samples x (baseline, skyhook, lqr)
+    assert not [r["reason"] for r in rows if r["failed"]]
+    assert all(r["a_total"] > 0 for r in rows)
+    with pytest.raises(
+        ValueError, match=r"study\.params: missing key; machine .* description file"
+    ):
+        parse_study(text.replace(f'params = "{params}"\n', ""))
+    with pytest.raises(ValueError, match=r"study\.params = 'nowhere\.toml': allowed: the path"):
+        parse_study(text.replace(f'params = "{params}"', 'params = "nowhere.toml"'))
