@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import ctypes
 import time
 from pathlib import Path
 
@@ -15,6 +14,7 @@ from loader_model.plant.equilibrium import static_state
 from loader_model.plant.layout import plant_layout
 from loader_model.plant.plant import plant_function
 from loader_model.plant.scenario import resolve_plant
+from tests.fmu.model_exchange import continuous_time_instance, pointer
 
 fmpy = pytest.importorskip("fmpy")
 fmi2 = pytest.importorskip("fmpy.fmi2")
@@ -47,31 +47,18 @@ def test_wheel_loader_fmu_derivatives_equal_the_plant_function(tmp_path: Path) -
     for name, value in zip(names, fmu_parameter_values(params, MACHINE), strict=True):
         assert float(by_name[name].start) == pytest.approx(value, rel=1e-15), name
 
-    unzipped = fmpy.extract(str(target))
-    fmu = fmi2.FMU2Model(
-        guid=md.guid,
-        unzipDirectory=unzipped,
-        modelIdentifier=md.modelExchange.modelIdentifier,
-        instanceName="wheel_loader",
-    )
-    fmu.instantiate()
-    fmu.setupExperiment(startTime=0.0)
-    fmu.enterInitializationMode()
-    fmu.exitInitializationMode()
-    fmu.enterContinuousTimeMode()
     n = len(layout.state_names)
     states, derivatives = np.zeros(n), np.zeros(n)
-    fmu.getContinuousStates(states.ctypes.data_as(ctypes.POINTER(ctypes.c_double)), n)
-    fmu.getDerivatives(derivatives.ctypes.data_as(ctypes.POINTER(ctypes.c_double)), n)
-    outputs = np.asarray(fmu.getReal([by_name[n].valueReference for n in layout.output_names]))
     nominals = np.array([float(by_name[f"x.{n}"].nominal) for n in layout.state_names])
     moved = x0 + 0.01 * nominals * np.cos(np.arange(n))  # off the equilibrium: xdot != 0
     moved_xdot = np.asarray(plant_function(MACHINE)(moved, u0, w, params)[0]).ravel()
-    fmu.setContinuousStates(moved.ctypes.data_as(ctypes.POINTER(ctypes.c_double)), n)
     moved_derivatives = np.zeros(n)
-    fmu.getDerivatives(moved_derivatives.ctypes.data_as(ctypes.POINTER(ctypes.c_double)), n)
-    fmu.terminate()
-    fmu.freeInstance()
+    with continuous_time_instance(target, md, "wheel_loader") as fmu:
+        fmu.getContinuousStates(pointer(states), n)
+        fmu.getDerivatives(pointer(derivatives), n)
+        outputs = np.asarray(fmu.getReal([by_name[n].valueReference for n in layout.output_names]))
+        fmu.setContinuousStates(pointer(moved), n)
+        fmu.getDerivatives(pointer(moved_derivatives), n)
     np.testing.assert_allclose(states, x0, rtol=1e-12, atol=1e-12 * nominals.max())
     assert np.all(np.abs(derivatives - xdot) <= RTOL * (np.abs(xdot) + nominals))
     np.testing.assert_allclose(outputs, y, rtol=1e-9, atol=1e-9)

@@ -254,12 +254,10 @@ def test_export_fmu_carries_every_axle(files: tuple[Path, Path], tmp_path: Path)
     axle's road inputs and tyre output, starts at the static equilibrium, and its derivatives
     off the equilibrium equal the plant Function's (to 1e-9 of each derivative plus its
     state's nominal, the wheel loader's FMU tolerance)."""
-    import ctypes
-
     fmpy = pytest.importorskip("fmpy")
-    fmi2 = pytest.importorskip("fmpy.fmi2")
     from loader_model.cli import main
     from loader_model.plant.plant import plant_function
+    from tests.fmu.model_exchange import continuous_time_instance, pointer
 
     description, params = files
     target = tmp_path / "three_axle.fmu"
@@ -271,26 +269,13 @@ def test_export_fmu_carries_every_axle(files: tuple[Path, Path], tmp_path: Path)
     assert by_name["w_Ry"].description == "road under the axle R, vertical"
     plant = _plant_of(files)
     layout, n = plant.layout, len(plant.layout.state_names)
-    fmu = fmi2.FMU2Model(
-        guid=model.guid,
-        unzipDirectory=fmpy.extract(str(target)),
-        modelIdentifier=model.modelExchange.modelIdentifier,
-        instanceName="three_axle",
-    )
-    fmu.instantiate()
-    fmu.setupExperiment(startTime=0.0)
-    fmu.enterInitializationMode()
-    fmu.exitInitializationMode()
-    fmu.enterContinuousTimeMode()
-    states = np.zeros(n)
-    fmu.getContinuousStates(states.ctypes.data_as(ctypes.POINTER(ctypes.c_double)), n)
     nominals = np.array([float(by_name[f"x.{name}"].nominal) for name in layout.state_names])
     moved = plant.x0 + 0.01 * nominals * np.cos(np.arange(n))
-    fmu.setContinuousStates(moved.ctypes.data_as(ctypes.POINTER(ctypes.c_double)), n)
-    derivatives = np.zeros(n)
-    fmu.getDerivatives(derivatives.ctypes.data_as(ctypes.POINTER(ctypes.c_double)), n)
-    fmu.terminate()
-    fmu.freeInstance()
+    states, derivatives = np.zeros(n), np.zeros(n)
+    with continuous_time_instance(target, model, "three_axle") as fmu:
+        fmu.getContinuousStates(pointer(states), n)
+        fmu.setContinuousStates(pointer(moved), n)
+        fmu.getDerivatives(pointer(derivatives), n)
     w = np.zeros(len(layout.exogenous_names))
     expected = np.asarray(
         plant_function(layout.machine.name)(moved, plant.u0, w, plant.params)[0]
