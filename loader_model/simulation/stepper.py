@@ -37,7 +37,7 @@ from loader_model.plant.layout import plant_layout
 from loader_model.plant.plant import plant_function
 from loader_model.simulation.compiled import CompilationError, compiled_function
 
-__all__ = ["compile_period", "lu_solver", "period_function"]
+__all__ = ["compile_period", "lu_solver", "period_function", "ros2_period"]
 
 _GAMMA = 1.0 + 1.0 / math.sqrt(2.0)
 
@@ -119,21 +119,7 @@ def period_function(
     y_step = ca.SX.sym("y_step", n_y)
     _, y = plant(x, u_previous, w0, params)  # y does not depend on u (checked in the tests)
     z_next, u = controller(z, quantise(y + y_error, y_step), settings)
-    step = period_s / substeps
-    xs, us, ws = ca.SX.sym("x", nx), ca.SX.sym("u"), ca.SX.sym("w", n_w)
-    rate_s = plant(xs, us, ws, params)[0]
-    rate_and_jacobian = ca.Function(
-        "rate_and_jacobian", [xs, us, ws, params], [rate_s, ca.jacobian(rate_s, xs)]
-    )
-    state = x
-    for index in range(substeps):
-        w_start = w0 + (w1 - w0) * (index / substeps)
-        w_end = w0 + (w1 - w0) * ((index + 1) / substeps)
-        rate, jacobian = rate_and_jacobian(state, u, w_start, params)
-        solve = lu_solver(ca.SX.eye(nx) - _GAMMA * step * jacobian)
-        k1 = solve(rate)
-        k2 = solve(plant(state + step * k1, u, w_end, params)[0] - 2.0 * k1)
-        state = state + 1.5 * step * k1 + 0.5 * step * k2
+    state = ros2_period(plant, x, u, w0, w1, params, period_s, substeps)[0]
     outputs = ca.cse(ca.vertcat(state, z_next, u, y, u))
     carry_next = outputs[: nx + nz + 1]
     y_out = outputs[nx + nz + 1 : nx + nz + 1 + n_y]
@@ -144,6 +130,57 @@ def period_function(
         ["carry", "w0", "w1", "params", "settings", "y_error", "y_step"],
         ["carry_next", "y", "u"],
     )
+
+
+def ros2_period(
+    plant: ca.Function,
+    x: ca.SX,
+    u: ca.SX,
+    w0: ca.SX,
+    w1: ca.SX,
+    params: ca.SX,
+    period_s: float,
+    substeps: int,
+    sensitivities: bool = False,
+) -> tuple[ca.SX, ca.SX | None, ca.SX | None]:
+    r"""``substeps`` ROS2 steps of ``plant`` over one period with u held (module notes).
+
+    Returns (x_next, A, B); with ``sensitivities`` A and B are the period's sensitivities of the
+    *flow*: the variational equation δẋ = J δx + J_u δu integrated by the same ROS2 steps with
+    each substep's Jacobians (J, J_u at its start: the linear ROS2 update
+    δ ← δ + h (3/2 κ₁ + 1/2 κ₂), W κ₁ = J δ + J_u δu, W κ₂ = J (δ + h κ₁) + J_u δu − 2 κ₁).
+    They approximate ∂x(t + h)/∂(x, u) of the ODE to the method's order; the derivative of the
+    discrete step itself also differentiates J and the second stage's f, which where a substep
+    straddles a valve's opening band amplifies by up to 2.6e4 in one period (measured along the
+    paper course; ``loader_model.bound.trajectory``'s notes). Else (None, None).
+    """
+    nx = x.shape[0]
+    step = period_s / substeps
+    xs, us, ws = ca.SX.sym("x", nx), ca.SX.sym("u"), ca.SX.sym("w", w0.shape[0])
+    rate_s = plant(xs, us, ws, params)[0]
+    outputs = [rate_s, ca.jacobian(rate_s, xs)]
+    if sensitivities:
+        outputs.append(ca.jacobian(rate_s, us))
+    rate_and_jacobian = ca.Function("rate_and_jacobian", [xs, us, ws, params], outputs)
+    state = x
+    flow = ca.SX.eye(nx + 1)[:nx, :] if sensitivities else None  # (A | B), δ per unit (δx, δu)
+    for index in range(substeps):
+        w_start = w0 + (w1 - w0) * (index / substeps)
+        w_end = w0 + (w1 - w0) * ((index + 1) / substeps)
+        rate, jacobian, *rest = rate_and_jacobian(state, u, w_start, params)
+        solve = lu_solver(ca.SX.eye(nx) - _GAMMA * step * jacobian)
+        if sensitivities:
+            forcing = ca.horzcat(ca.SX.zeros(nx, nx), rest[0])
+            k1 = ca.horzcat(*(solve(c) for c in ca.horzsplit(jacobian @ flow + forcing)))
+            second = jacobian @ (flow + step * k1) + forcing - 2.0 * k1
+            k2 = ca.horzcat(*(solve(c) for c in ca.horzsplit(second)))
+            flow = flow + 1.5 * step * k1 + 0.5 * step * k2
+        k1 = solve(rate)
+        k2 = solve(plant(state + step * k1, u, w_end, params)[0] - 2.0 * k1)
+        state = state + 1.5 * step * k1 + 0.5 * step * k2
+    if not sensitivities:
+        return state, None, None
+    return state, flow[:, :nx], flow[:, nx]
 
 
 _COMPILED: dict[tuple[str, float, int, bool, str], tuple[ca.Function, str]] = {}

@@ -32,11 +32,12 @@ def nonlinear(plant, problem, constrained):
     return solve_nonlinear_bound(problem, plant.u0 + constrained.command)
 
 
-@pytest.mark.slow  # compiles the linearised period to C: 127 s once per machine (cached)
 def test_gauss_newton_gradient_matches_finite_differences(plant, road):
-    """The model's gradient of a_total² (exact Jacobians along the simulated trajectory)
-    against central differences of the simulated a_total² on a 0.6 s problem, to 1e-4 of the
-    gradient's largest entry."""
+    """The model's gradient of a_total² (the flow's sensitivities along the simulated
+    trajectory, :func:`~loader_model.simulation.stepper.ros2_period`) against central differences
+    of the simulated a_total² on a 0.6 s problem, every command: measured within 2.2e-2 of the
+    gradient's largest entry (the two differentiate the ROS2 step differently in the stiff
+    hydraulic modes) and at a cosine of 0.99986; the test allows 3e-2 and 0.9995."""
     problem = bound_problem(plant, road, duration_s=0.6)
     weighting = seat_weighting()
     scale = problem.u_bounds[1]
@@ -50,12 +51,38 @@ def test_gauss_newton_gradient_matches_finite_differences(plant, road):
     def cost(table: np.ndarray) -> float:
         return weighting.a_total(rollout(problem, table).seat()) ** 2
 
-    step = 1e-4
-    for j in (5, 30, 55):
+    step, finite = 1e-4, np.zeros(problem.intervals)
+    for j in range(problem.intervals):
         delta = np.zeros(problem.intervals)
         delta[j] = step * scale
-        finite = (cost(command + delta) - cost(command - delta)) / (2 * step)
-        assert finite == pytest.approx(gradient[j], abs=1e-4 * np.max(np.abs(gradient)))
+        finite[j] = (cost(command + delta) - cost(command - delta)) / (2 * step)
+    assert np.max(np.abs(finite - gradient)) <= 3e-2 * np.max(np.abs(finite))
+    cosine = finite @ gradient / (np.linalg.norm(finite) * np.linalg.norm(gradient))
+    assert cosine >= 0.9995
+
+
+def test_flow_sensitivities_stay_bounded_over_the_paper_course(plant):
+    """Along the static command over the first 6 s of the paper course (9 km/h, two 40 mm
+    boards) no period's sensitivity A_k has an eigenvalue beyond 1.5 in modulus (measured 1.45
+    over 12 s) and their product grows by less than 10 times in norm after the first second
+    (measured: it shrinks). The derivative of the discrete step instead has eigenvalues up to
+    2.6e4 where a substep straddles the check valve's opening band, and its product grew by
+    1e12 at each board (12 s: to 1e51; the single-shooting sensitivities overflowed)."""
+    from loader_model.simulation import paper_course
+    from loader_model.simulation.simulator import course_input
+
+    problem = bound_problem(plant, course_input(paper_course(9.0), plant), duration_s=6.0)
+    trajectory = rollout(problem, np.full(problem.intervals, plant.u0))
+    a = linearise(problem, trajectory).a
+    assert np.max(np.abs(np.linalg.eigvals(a))) <= 1.5
+    product, log_norm, norms = np.eye(a.shape[1]), 0.0, []
+    for k, a_k in enumerate(a):
+        product = a_k @ product
+        size = np.linalg.norm(product)
+        log_norm, product = log_norm + np.log(size), product / size
+        if k % 1000 == 999:
+            norms.append(log_norm)
+    assert max(norms[1:]) - norms[0] <= np.log(10.0)
 
 
 def test_rollout_is_the_simulators_replay(plant, road, problem):
