@@ -7,8 +7,14 @@ sensitivities Z_k = ∂z_k/∂u (n_z × N) with
 .. math:: Z_{k+1} = \begin{pmatrix} A_k & 0 \\ \Gamma C_{s,k} & \Phi \end{pmatrix} Z_k
     + \begin{pmatrix} B_k \\ 0 \end{pmatrix} e_{\lfloor k/M \rfloor}^T ,
 
-swept forward in batched matrix products (only the columns of commands already applied are
-non-zero). The weighted seat residuals r_k = K (c ξ_k + d a_k) of a_total² = Σ_k ‖r_k‖² / K_s
+swept forward in blocks of :data:`_INTERVALS_PER_BLOCK` command intervals: inside a block only
+the transition products T_b = Ã_{k0+b−1} ⋯ Ã_{k0} (n_z × n_z) and the block's own commands'
+columns are swept period by period, and every row of the commands applied before it is one
+matrix product with Z_{k0} (only the columns of commands already applied are non-zero). On the
+6 s paper course it gave the period-by-period sweep's model to 4e-14 in 4.4 s instead of 28 s
+(measured on the development machine under load).
+
+The weighted seat residuals r_k = K (c ξ_k + d a_k) of a_total² = Σ_k ‖r_k‖² / K_s
 (Eq. 49, 50) have rows J_k = K (c Ξ_k + d C_{s,k} S_k), so the Gauss-Newton model of a_total²
 about the commands v (scaled by the pump's limit) is ½ v'ᵀ P v' + qᵀ v' + const with
 P = 2 Jᵀ J / K_s and q = 2 Jᵀ r / K_s − P v: the form of :mod:`~loader_model.bound.condensed`,
@@ -31,7 +37,8 @@ from loader_model.plant.plant import OUTPUT_NAMES, STATE_NAMES
 
 __all__ = ["GaussNewtonModel", "gauss_newton_model"]
 
-_ROWS_PER_BLOCK = 250
+#: Command intervals per block of the sweep (module notes).
+_INTERVALS_PER_BLOCK = 10
 
 
 @dataclass(frozen=True)
@@ -80,41 +87,49 @@ def gauss_newton_model(
     seat_rows = [OUTPUT_NAMES.index(s) for s in weighting.signals]
     path_rows = [OUTPUT_NAMES.index(s) for s in PATH_SIGNALS]
     rate = STATE_NAMES.index("Vd_p")
+    residual = weighting.weighted(trajectory.seat())  # (K_s, axes), k-weighted
+    n_p = len(PATH_SIGNALS) + 1
+    n_out = na + n_p
     k_diag = np.diag(weighting.k_factors)
-    seat = trajectory.seat()
-    residual = weighting.weighted(seat)  # (K_s, axes), k-weighted
     z_sens = np.zeros((nz, n))
     hessian, gradient = np.zeros((n, n)), np.zeros(n)
-    n_p = len(PATH_SIGNALS) + 1
     impulse = np.zeros((count, n_p, n))
-    block = np.zeros((_ROWS_PER_BLOCK * na, n))
-    block_r = np.zeros(_ROWS_PER_BLOCK * na)
-    out = np.zeros((na + n_p, nz))
-    out[na + n_p - 1, rate] = 1.0
-    aug = np.zeros((nz, nz))
-    aug[nx:, nx:] = weighting.phi
-    used, width = 0, 0
-    for k in range(count):
-        cols = k // m + 1
-        c_seat = linearisation.c[k, seat_rows]
-        out[:na, :nx] = k_diag @ weighting.d @ c_seat
-        out[:na, nx:] = k_diag @ weighting.c
-        out[na : na + n_p - 1, :nx] = linearisation.c[k, path_rows]
-        rows = out @ z_sens[:, :cols]
-        block[used * na : (used + 1) * na, :cols] = rows[:na]
-        block_r[used * na : (used + 1) * na] = residual[k]
-        impulse[k, :, :cols] = rows[na:]
-        used, width = used + 1, cols
-        if used == _ROWS_PER_BLOCK or k == count - 1:
-            j = block[: used * na, :width]
-            hessian[:width, :width] += j.T @ j
-            gradient[:width] += j.T @ block_r[: used * na]
-            block[:, :width] = 0.0
-            used = 0
-        aug[:nx, :nx] = linearisation.a[k]
-        aug[nx:, :nx] = weighting.gamma @ c_seat
-        z_sens[:, :cols] = aug @ z_sens[:, :cols]
-        z_sens[:nx, cols - 1] += linearisation.b[k]
+    block = m * _INTERVALS_PER_BLOCK
+    for k0 in range(0, count, block):
+        size = min(block, count - k0)
+        ks = np.arange(k0, k0 + size)
+        c_seat = linearisation.c[ks][:, seat_rows]  # (size, axes, nx)
+        # the stage maps: outputs (seat residual rows, path signals, V̇_p) and the transition
+        out = np.zeros((size, n_out, nz))
+        out[:, :na, :nx] = np.einsum("ij,jk,bkl->bil", k_diag, weighting.d, c_seat)
+        out[:, :na, nx:] = k_diag @ weighting.c
+        out[:, na : n_out - 1, :nx] = linearisation.c[ks][:, path_rows]
+        out[:, n_out - 1, rate] = 1.0
+        aug = np.zeros((size, nz, nz))
+        aug[:, :nx, :nx] = linearisation.a[ks]
+        aug[:, nx:, :nx] = np.einsum("ij,bjk->bik", weighting.gamma, c_seat)
+        aug[:, nx:, nx:] = weighting.phi
+        # T_b = aug_{k0+b-1} ... aug_{k0} and the block's own commands' sensitivities L_b
+        first, width = k0 // m, (k0 + size - 1) // m + 1  # columns: old < first <= new < width
+        local = np.zeros((nz, width - first))
+        transition = np.eye(nz)
+        mapped = np.empty((size, n_out, nz))
+        local_rows = np.empty((size, n_out, width - first))
+        for b in range(size):
+            mapped[b] = out[b] @ transition
+            local_rows[b] = out[b] @ local
+            transition = aug[b] @ transition
+            local = aug[b] @ local
+            local[:nx, (k0 + b) // m - first] += linearisation.b[k0 + b]
+        rows = np.zeros((size, n_out, width))
+        rows[:, :, :first] = (mapped.reshape(-1, nz) @ z_sens[:, :first]).reshape(size, n_out, -1)
+        rows[:, :, first:width] = local_rows
+        jac = rows[:, :na].reshape(size * na, width)
+        hessian[:width, :width] += jac.T @ jac
+        gradient[:width] += jac.T @ residual[ks].ravel()
+        impulse[ks, :, :width] = rows[:, na:]
+        z_sens[:, :first] = transition @ z_sens[:, :first]
+        z_sens[:, first:width] = local
     scale = u_scale
     hessian *= 2.0 * scale**2 / count
     gradient *= 2.0 * scale / count
