@@ -334,8 +334,8 @@ def _bench_nonlinear_bound(plant, riccati: float) -> None:
     from loader_model.simulation.simulator import course_input, simulate
 
     start = time.perf_counter()
-    linearised_period()  # compiled once per machine (about 130 s the first time), then loaded
-    _report("nonlinear bound: load/compile linearisation", time.perf_counter() - start, unit="s")
+    linearised_period()  # the flow's sensitivities of one period, built in SX (not compiled)
+    _report("nonlinear bound: build the linearised period", time.perf_counter() - start, unit="s")
     road = course_input(paper_course(9.0), plant)
     problem = bound_problem(plant, road, duration_s=NONLINEAR_BENCH_S)
     scenario = ride_scenario(plant, "skyhook", refined_settings())
@@ -349,6 +349,8 @@ def _bench_nonlinear_bound(plant, riccati: float) -> None:
         f"(warm start {bound.warm_a_total_m_s2:.4f}), {bound.status}; violation "
         f"{bound.max_violation:.1e} of the limits (baseline: the linear Riccati sweep)"
     )
+    parts = ", ".join(f"{name} {seconds:.1f} s" for name, seconds in bound.timings_s.items())
+    print(f"{'':<42}time by part: {parts}; {bound.restorations} restoration steps")
 
 
 def _bench_simulator() -> None:

@@ -25,7 +25,9 @@ __all__ = ["QPResult", "solve_dense_qp"]
 
 @dataclass(frozen=True)
 class QPResult:
-    """The solution: u, iterations, the largest scaled residual and the mean complementarity."""
+    """The solution: u, iterations, the largest scaled residual, the mean complementarity and
+    the multipliers of the equality rows (E u = e) and of the general rows (l ≤ G u ≤ h; positive
+    on the upper bound, negative on the lower)."""
 
     u: np.ndarray
     iterations: int
@@ -33,6 +35,8 @@ class QPResult:
     dual_residual: float
     complementarity: float
     converged: bool
+    equality_multipliers: np.ndarray | None = None
+    row_multipliers: np.ndarray | None = None
 
 
 def _step(values: np.ndarray, steps: np.ndarray) -> float:
@@ -151,4 +155,6 @@ def solve_dense_qp(
         dual_residual=float(np.max(np.abs(p @ u + q + e_matrix.T @ y + ct_times(dual)))) / scale,
         complementarity=float(slack @ dual) / slack.size,
         converged=converged,
+        equality_multipliers=y,
+        row_multipliers=dual[:m] - dual[m : 2 * m],
     )  # fmt: skip

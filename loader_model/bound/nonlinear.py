@@ -19,11 +19,14 @@ Measured figures: ``docs/guide/bound.md`` and the tests of ``tests/bound/test_no
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from loader_model.bound.constrained import generate_constraints, path_limits
+from loader_model.bound.dense_qp import QPResult
 from loader_model.bound.gauss_newton import gauss_newton_model
 from loader_model.bound.problem import BoundProblem
 from loader_model.bound.trajectory import Trajectory, linearise, rollout
@@ -39,6 +42,8 @@ MAX_NONLINEAR_INTERVALS = 2000
 DAMPING_TRIES = 3
 #: Penalty weight of the merit's constraint violation, relative to the warm start's a_total².
 PENALTY = 10.0
+#: The penalty weight is raised to this multiple of the QP's multiplier sum when below it.
+MULTIPLIER_MARGIN = 2.0
 
 
 @dataclass(frozen=True)
@@ -75,6 +80,15 @@ class NonlinearBound:
         a_total after each iteration.
     status : str
         Why it stopped.
+    penalty_weight : float
+        ρ of the merit at the end (raised from ``PENALTY`` a_warm² to ``MULTIPLIER_MARGIN``
+        times the QP's multiplier sum when that was larger).
+    timings_s : dict of str to float
+        Wall time by part: ``linearise``, ``model`` (the sensitivity sweep), ``qp`` and
+        ``rollout`` (the line search's simulations), s.
+    restorations : int
+        Accepted restoration steps (the nearest point meeting the linearised limits, tried when
+        no damped step of the full QP lowered the merit on an infeasible trajectory).
     """
 
     command: np.ndarray
@@ -90,11 +104,23 @@ class NonlinearBound:
     warm_a_total_m_s2: float
     history: tuple[float, ...] = ()
     status: str = ""
+    restorations: int = 0
+    penalty_weight: float = 0.0
+    timings_s: dict[str, float] = field(default_factory=dict)
 
     @property
     def time_per_iteration_s(self) -> float:
         """Wall time per SQP iteration, s."""
         return self.solve_s / max(self.iterations, 1)
+
+
+@contextmanager
+def _timed(timings: dict[str, float], part: str) -> Iterator[None]:
+    start = time.perf_counter()
+    try:
+        yield
+    finally:
+        timings[part] = timings.get(part, 0.0) + time.perf_counter() - start
 
 
 def path_violation(problem: BoundProblem, trajectory: Trajectory) -> float:
@@ -120,6 +146,15 @@ def end_residual(problem: BoundProblem, trajectory: Trajectory) -> np.ndarray:
 def _end_scale(problem: BoundProblem) -> np.ndarray:
     stroke = problem.plant.parameter("stroke")
     return np.array([stroke, problem.u_bounds[1], problem.rate_limit])
+
+
+def _multiplier_sum(result: QPResult, end_scale: np.ndarray) -> float:
+    """Σ|λ| of the QP's path rows and end rows in units of the merit's relative violation (the
+    path rows are scaled by their limits, the end rows are physical: times ``end_scale``): an
+    ℓ∞ penalty weight above it makes the QP's step a descent direction of the merit."""
+    rows = np.sum(np.abs(result.row_multipliers)) if result.row_multipliers is not None else 0.0
+    ends = result.equality_multipliers
+    return float(rows + (np.sum(np.abs(ends) * end_scale) if ends is not None else 0.0))
 
 
 def _warm_command(problem: BoundProblem, warm: SimulationResult | np.ndarray) -> np.ndarray:
@@ -202,43 +237,62 @@ def solve_nonlinear_bound(
     current, a_total, violation = merit(trajectory)
     rows = np.zeros((0, 3), dtype=int)
     history, qp_iterations, converged, iterations = [a_total], 0, False, 0
+    restorations, timings = 0, {}
     status = "max_iterations reached"
     bar = tqdm(total=max_iterations, desc="nonlinear bound", unit="it", disable=not progress)
     with bar:
         for _ in range(max_iterations):
             iterations += 1
-            with np.errstate(over="ignore", invalid="ignore"):  # checked just below
-                model = gauss_newton_model(
-                    problem, trajectory, linearise(problem, trajectory), weighting, scale
-                )
+            with _timed(timings, "linearise"):
+                linearisation = linearise(problem, trajectory)
+            with np.errstate(over="ignore", invalid="ignore"), _timed(timings, "model"):
+                model = gauss_newton_model(problem, trajectory, linearisation, weighting, scale)
             if not (np.all(np.isfinite(model.hessian)) and np.all(np.isfinite(model.path_impulse))):
                 status = "sensitivities overflow (the linearised period is unstable along the run)"
                 break
             accepted, damping = False, 1e-9
-            for _ in range(DAMPING_TRIES):
+            for attempt in range(DAMPING_TRIES + 1):
                 diagonal = damping * np.mean(np.diag(model.hessian))
+                hessian = model.hessian + diagonal * np.eye(model.intervals)
+                # the last attempt is the restoration step: the nearest point (in the damped
+                # Hessian's metric) that meets the linearised limits and end condition
+                restore = attempt == DAMPING_TRIES
+                gradient = (
+                    -hessian @ (command / scale)
+                    if restore
+                    else (model.gradient - diagonal * command / scale)
+                )
+                if restore and violation <= path_tolerance:
+                    break
                 try:
-                    with np.errstate(over="raise", invalid="raise"):  # a failed QP: damp more
+                    # a failed QP: damp more
+                    with np.errstate(over="raise", invalid="raise"), _timed(timings, "qp"):
                         result, rows, qp_its, _, _, _ = generate_constraints(
-                            model, model.hessian + diagonal * np.eye(model.intervals),
-                            model.gradient - diagonal * command / scale, limits,
-                            problem.u_bounds[0] / scale, problem.u_bounds[1] / scale, rows,
-                            tolerance=1e-6, max_rounds=20,
+                            model, hessian, gradient, limits, problem.u_bounds[0] / scale,
+                            problem.u_bounds[1] / scale, rows, tolerance=1e-6, max_rounds=20,
                         )  # fmt: skip
                 except (np.linalg.LinAlgError, FloatingPointError):
                     damping *= 1e3
                     continue
                 qp_iterations += qp_its
+                if not restore:  # an exact penalty needs ρ above the QP's multipliers
+                    needed = MULTIPLIER_MARGIN * _multiplier_sum(result, end_scale)
+                    if needed > rho:
+                        rho = needed
+                        current = a_total**2 + rho * violation
                 step = result.u * scale - command
                 alpha = 1.0
                 while alpha > 1e-2 and not accepted:
-                    candidate = rollout(problem, command + alpha * step)
+                    with _timed(timings, "rollout"):
+                        candidate = rollout(problem, command + alpha * step)
                     value, a_new, v_new = merit(candidate)
                     accepted = value < current
                     alpha = alpha if accepted else 0.5 * alpha
                 if accepted:
+                    restorations += restore
                     break
-                damping *= 1e3
+                if not restore:
+                    damping *= 1e3
             if not accepted:
                 converged = violation <= path_tolerance
                 status = "stalled: no merit decrease along the damped steps" + (
@@ -249,7 +303,9 @@ def solve_nonlinear_bound(
             command, trajectory = command + alpha * step, candidate
             current, a_total, violation = value, a_new, v_new
             history.append(a_total)
-            bar.set_postfix_str(f"a_total {a_total:.5f}, violation {violation:.1e}, α {alpha:g}")
+            bar.set_postfix_str(
+                f"a_total {a_total:.5f}, violation {violation:.1e}, α {alpha:g}, ρ {rho:.3g}"
+            )
             bar.update()
             if decrease < rtol and violation <= path_tolerance:
                 converged, status = True, "converged"
@@ -268,4 +324,7 @@ def solve_nonlinear_bound(
         warm_a_total_m_s2=a_warm,
         history=tuple(history),
         status=status,
+        restorations=restorations,
+        penalty_weight=rho,
+        timings_s=timings,
     )
