@@ -68,7 +68,8 @@ TAIL_INTERVALS = 25
 #: Weight of a plan's largest path violation σ (relative to the limits) over the QP's own scale:
 #: an exact L∞ penalty, so σ = 0 whenever a plan within all limits exists (module notes).
 SOFT_WEIGHT = 1e3
-#: σ = κ s with s the QP's variable, which shares the command's box (up to 0.89): σ ≤ 0.89 κ.
+#: σ = κ s with s the QP's variable, which shares the command's (scaled) box: σ ≤ κ u_hi (8.9 for
+#: the empty bucket).
 _SIGMA_SCALE = 10.0
 #: Stands for "no bound" on the one-sided halves of the softened rows (relative units).
 _FAR = 1e3
@@ -217,7 +218,7 @@ def receding_preview(
     ------
     ValueError
         Naming the argument: ``preview_m`` negative, not finite or longer than the course,
-        ``horizon`` not an integer or < 1.
+        ``horizon`` not an integer or < 1, ``tolerance`` outside (0, 0.1].
     """
     if isinstance(preview_m, bool) or not isinstance(preview_m, int | float | np.number):
         raise ValueError(f"preview_m must be a length in m >= 0; got {preview_m!r}")
@@ -228,6 +229,10 @@ def receding_preview(
         raise ValueError(f"horizon must be an integer number of command intervals; got {horizon!r}")
     if horizon < 1:
         raise ValueError(f"horizon must be >= 1 command interval; got {horizon}")
+    if not 0.0 < tolerance <= 0.1:
+        raise ValueError(
+            f"tolerance must be in (0, 0.1] (relative to the limits); got {tolerance!r}"
+        )
     start_s = time.perf_counter()
     lq, m = design.lq, problem.hold_periods
     weights = np.linalg.eigh(design.riccati)

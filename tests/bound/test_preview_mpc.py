@@ -168,3 +168,9 @@ def test_bad_input_names_the_argument(design, short, road, preview_m, horizon, m
         receding_preview(
             design, short, preview_m, road.speed_m_s, road.wheelbase_m, horizon=horizon
         )
+
+
+@pytest.mark.parametrize("tolerance", [0.0, 0.5, float("nan")])
+def test_bad_tolerance_names_the_argument(design, short, road, tolerance):
+    with pytest.raises(ValueError, match="tolerance must be in"):
+        receding_preview(design, short, 0.5, road.speed_m_s, road.wheelbase_m, tolerance=tolerance)
