@@ -91,6 +91,9 @@ class PreviewDesign:
         T, the lifted problem's state scales (z = T⁻¹ × physical deviation).
     state_weight : numpy.ndarray
         The stage weight Q + Q_drift the DARE solved with (:data:`DRIFT_WEIGHT`).
+    road_path : tuple of numpy.ndarray
+        The front axle's and the rear axle's road in the path signals' offsets, each (N, M n_p)
+        as the third entry of :attr:`~loader_model.bound.linear.LinearQuadratic.path` (their sum).
     """
 
     lq: LinearQuadratic
@@ -100,6 +103,7 @@ class PreviewDesign:
     road_terms: tuple[tuple[np.ndarray, np.ndarray, np.ndarray], ...]
     state_scale: np.ndarray
     state_weight: np.ndarray
+    road_path: tuple[np.ndarray, ...] = ()
 
     @property
     def hessian(self) -> float:
@@ -151,25 +155,27 @@ class PreviewRun:
     states: np.ndarray
 
 
-def _scaling(problem: BoundProblem) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """F0, F1 of the sampled plant and the state scales T of :func:`linear_quadratic` (the peaks
-    of the free response to the whole road, recomputed the same way)."""
-    az, _, f0, f1, *_ = _sampled_plant(problem, seat_weighting(problem.period_s))
+def _scaling(problem: BoundProblem) -> tuple[np.ndarray, ...]:
+    """F0, F1 of the sampled plant, the state scales T of :func:`linear_quadratic` (the peaks
+    of the free response to the whole road, recomputed the same way) and the path signals' maps
+    (state, road)."""
+    az, _, f0, f1, *_, path_z, path_w = _sampled_plant(problem, seat_weighting(problem.period_s))
     w = problem.exogenous
     whole = w[:-1] @ f0.T + w[1:] @ f1.T
     response, peak = np.zeros(az.shape[0]), np.zeros(az.shape[0])
     for k in range(problem.periods):
         response = az @ response + whole[k]
         peak = np.maximum(peak, np.abs(response))
-    return f0, f1, np.maximum(peak, 1e-12 * max(peak.max(), 1e-30))
+    return f0, f1, np.maximum(peak, 1e-12 * max(peak.max(), 1e-30)), path_z, path_w
 
 
 def _road_terms(
     problem: BoundProblem, lq: LinearQuadratic, columns: tuple[int, ...], scaling: tuple
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+) -> tuple[np.ndarray, ...]:
     """(d, q, r) of the road in ``columns`` lifted as :func:`linear_quadratic` lifts the whole
-    road, in its scaling."""
-    f0, f1, t = scaling
+    road, in its scaling, and its path signals' offsets (N, M n_p)."""
+    f0, f1, t, path_z, path_w = scaling
+    path_s = path_z * t[None, :]
     a_s, _, h_s, _, gw, *_ = lq.sample
     w = problem.exogenous
     part = np.zeros_like(w)
@@ -178,14 +184,16 @@ def _road_terms(
     m, n, nz = problem.hold_periods, problem.intervals, a_s.shape[0]
     p_i, q_i = np.eye(nz), np.zeros(nz)
     omega, q_lin, r_lin = np.zeros((n, nz)), np.zeros((n, nz)), np.zeros(n)
+    offsets = []
     for i in range(m):
+        offsets.append(omega @ path_s.T + part[i : problem.periods : m] @ path_w.T)
         hp, hq = h_s @ p_i, h_s @ q_i
         c = omega @ h_s.T + part[i : problem.periods : m] @ gw.T
         q_lin += c @ hp
         r_lin += c @ hq
         p_i, q_i = a_s @ p_i, a_s @ q_i + lq.sample[1]
         omega = omega @ a_s.T + d_s[i : problem.periods : m]
-    return omega, q_lin, r_lin
+    return omega, q_lin, r_lin, np.hstack(offsets)
 
 
 def preview_design(problem: BoundProblem, drift_weight: float = DRIFT_WEIGHT) -> PreviewDesign:
@@ -204,7 +212,9 @@ def preview_design(problem: BoundProblem, drift_weight: float = DRIFT_WEIGHT) ->
     rear_columns = tuple(c for c in range(problem.exogenous.shape[1]) if c not in FRONT_COLUMNS)
     rear = _road_terms(problem, lq, rear_columns, scaling)
     closed = lq.a - np.outer(lq.b, gain)
-    return PreviewDesign(lq, p, gain, closed, (front, rear), scaling[2], lq.q + drift)
+    return PreviewDesign(
+        lq, p, gain, closed, (front[:3], rear[:3]), scaling[2], lq.q + drift, (front[3], rear[3])
+    )
 
 
 def preview_intervals(
