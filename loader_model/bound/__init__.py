@@ -15,7 +15,8 @@
   and cost; :mod:`~loader_model.bound.preview_report` runs it at 1 kHz and sweeps the preview.
 - :mod:`~loader_model.bound.nonlinear`: the machine's bound, Gauss-Newton SQP in single shooting
   on the simulator's own period (:mod:`~loader_model.bound.trajectory`: rollout and exact
-  linearisation; :mod:`~loader_model.bound.gauss_newton`: the condensed Gauss-Newton QP).
+  linearisation; :mod:`~loader_model.bound.stage_model`: the Gauss-Newton QP in stage form;
+  :mod:`~loader_model.bound.riccati_qp`: its Riccati interior point).
 - :mod:`~loader_model.bound.replay`: a controller that plays a command table back, and the
   replay through the simulator.
 """

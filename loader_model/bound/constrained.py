@@ -129,8 +129,7 @@ def generate_constraints(
 ) -> tuple:
     """Constraint generation (module notes) on a condensed QP ½ uᵀ P u + qᵀ u with the end
     condition, the box [u_low, u_high] and the path rows of ``condensed`` (anything with
-    ``path_values``, ``path_rows``, ``path_offset``, ``end_matrix``, ``end_target``: also the
-    nonlinear bound's :class:`~loader_model.bound.gauss_newton.GaussNewtonModel`).
+    ``path_values``, ``path_rows``, ``path_offset``, ``end_matrix``, ``end_target``).
 
     Returns
     -------

@@ -4,14 +4,15 @@ Each iterate's trajectory is the simulator's (:func:`~loader_model.bound.traject
 the simulator's compiled period, substeps, road table and seat signals), so the optimiser's
 a_total (Eq. 49, 50, the sampled weightings of :mod:`~loader_model.bound.weighting`) is the one
 the optimal command gives when replayed open loop (:func:`~loader_model.bound.replay.replay`).
-One iteration: linearise along the trajectory with exact Jacobians
-(:func:`~loader_model.bound.trajectory.linearise`), build the condensed Gauss-Newton QP
-(:func:`~loader_model.bound.gauss_newton.gauss_newton_model`), solve it with the command box,
-the end condition and the path limits by constraint generation
-(:func:`~loader_model.bound.constrained.generate_constraints`, the dense interior point of
-:mod:`~loader_model.bound.dense_qp`; the working set carries over between iterations), then a
-backtracking line search on the merit a_total² + ρ a_ref² (largest relative violation of the
-path limits and the end condition) of the TRUE simulated trajectory. Stops when the relative
+One iteration: linearise along the trajectory with the flow's sensitivities
+(:func:`~loader_model.bound.trajectory.linearise`), build the Gauss-Newton QP in stage form
+(:func:`~loader_model.bound.stage_model.stage_qp`: one stage per command interval, every path
+sample a row of its stage), solve it with the command box, the end condition and all path
+limits by the Riccati interior point (:func:`~loader_model.bound.riccati_qp.solve_riccati_qp`,
+cost linear in the course's length), with Levenberg-Marquardt damping relative to the condensed
+Hessian's mean diagonal if needed, then a backtracking line search on the merit
+a_total² + ρ × (largest relative violation of the path limits and the end condition) of the
+TRUE simulated trajectory. Stops when the relative
 decrease of the merit is below ``rtol`` with the trajectory feasible to ``path_tolerance``.
 Measured figures: ``docs/guide/bound.md`` and the tests of ``tests/bound/test_nonlinear.py``.
 """
@@ -21,23 +22,27 @@ from __future__ import annotations
 import time
 from collections.abc import Iterator
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from loader_model.bound.constrained import generate_constraints, path_limits
+from loader_model.bound.constrained import path_limits
 from loader_model.bound.dense_qp import QPResult
-from loader_model.bound.gauss_newton import gauss_newton_model
 from loader_model.bound.problem import BoundProblem
+from loader_model.bound.riccati_qp import mean_condensed_curvature, solve_riccati_qp
+from loader_model.bound.stage_model import stage_qp
 from loader_model.bound.trajectory import Trajectory, linearise, rollout
 from loader_model.bound.weighting import SeatWeighting, seat_weighting
 from loader_model.simulation.result import SimulationResult
 
 __all__ = ["NonlinearBound", "end_residual", "path_violation", "solve_nonlinear_bound"]
 
-#: Most command values of one nonlinear bound: the path rows take K_s × 4 × N × 8 bytes (1.3 GB
-#: at 2000, 20 s of 10 ms commands) and one iteration grows with N² K_s.
+#: Most command values of one nonlinear bound (20 s of 10 ms commands): memory and time grow
+#: linearly with N (the linearisation holds K_s (n_x + n_y) n_x doubles, about 0.2 GB at 20 s;
+#: one SQP iteration took about 6 s at 12 s).
 MAX_NONLINEAR_INTERVALS = 2000
+#: Relative tolerance of each QP (:mod:`~loader_model.bound.dense_qp`'s residuals and gap).
+QP_TOLERANCE = 1e-8
 #: Levenberg-Marquardt damping tries per linearisation (1e-9, 1e-6, 1e-3 of the mean curvature).
 DAMPING_TRIES = 3
 #: Penalty weight of the merit's constraint violation, relative to the warm start's a_total².
@@ -235,7 +240,6 @@ def solve_nonlinear_bound(
         return a_total**2 + rho * violation, a_total, violation
 
     current, a_total, violation = merit(trajectory)
-    rows = np.zeros((0, 3), dtype=int)
     history, qp_iterations, converged, iterations = [a_total], 0, False, 0
     restorations, timings = 0, {}
     status = "max_iterations reached"
@@ -246,41 +250,41 @@ def solve_nonlinear_bound(
             with _timed(timings, "linearise"):
                 linearisation = linearise(problem, trajectory)
             with np.errstate(over="ignore", invalid="ignore"), _timed(timings, "model"):
-                model = gauss_newton_model(problem, trajectory, linearisation, weighting, scale)
-            if not (np.all(np.isfinite(model.hessian)) and np.all(np.isfinite(model.path_impulse))):
+                model = stage_qp(problem, trajectory, linearisation, weighting, scale, limits)
+                curvature = mean_condensed_curvature(model)
+            if not all(
+                np.all(np.isfinite(x)) for x in (model.hessian, model.rows, model.transition)
+            ) or not np.isfinite(curvature):
                 status = "sensitivities overflow (the linearised period is unstable along the run)"
                 break
             accepted, damping = False, 1e-9
             for attempt in range(DAMPING_TRIES + 1):
-                diagonal = damping * np.mean(np.diag(model.hessian))
-                hessian = model.hessian + diagonal * np.eye(model.intervals)
+                hessian = model.hessian.copy()
+                hessian[:, -1, -1] += damping * curvature
                 # the last attempt is the restoration step: the nearest point (in the damped
                 # Hessian's metric) that meets the linearised limits and end condition
                 restore = attempt == DAMPING_TRIES
-                gradient = (
-                    -hessian @ (command / scale)
-                    if restore
-                    else (model.gradient - diagonal * command / scale)
-                )
                 if restore and violation <= path_tolerance:
                     break
+                damped = replace(
+                    model,
+                    hessian=hessian,
+                    gradient=0.0 * model.gradient if restore else model.gradient,
+                )
                 try:
                     # a failed QP: damp more
                     with np.errstate(over="raise", invalid="raise"), _timed(timings, "qp"):
-                        result, rows, qp_its, _, _, _ = generate_constraints(
-                            model, hessian, gradient, limits, problem.u_bounds[0] / scale,
-                            problem.u_bounds[1] / scale, rows, tolerance=1e-6, max_rounds=20,
-                        )  # fmt: skip
+                        result, _ = solve_riccati_qp(damped, tolerance=QP_TOLERANCE)
                 except (np.linalg.LinAlgError, FloatingPointError):
                     damping *= 1e3
                     continue
-                qp_iterations += qp_its
+                qp_iterations += result.iterations
                 if not restore:  # an exact penalty needs ρ above the QP's multipliers
                     needed = MULTIPLIER_MARGIN * _multiplier_sum(result, end_scale)
                     if needed > rho:
                         rho = needed
                         current = a_total**2 + rho * violation
-                step = result.u * scale - command
+                step = result.u * scale
                 alpha = 1.0
                 while alpha > 1e-2 and not accepted:
                     with _timed(timings, "rollout"):
