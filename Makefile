@@ -6,6 +6,10 @@ PY := $(VENV)/bin/python
 STAMP := $(VENV)/.installed
 LOCK := requirements-lock.txt
 PIP_QUIET := --quiet --disable-pip-version-check
+# pytest-xdist workers of `make test` and `make test-slow` (each test module on one worker, so a
+# module's shared fixtures are computed once); 2 = this project's machines' cores
+TEST_WORKERS ?= 2
+PYTEST_PARALLEL := -n $(TEST_WORKERS) --dist loadscope
 
 .PHONY: setup lock regenerate calibrate calibrate-table6 fidelity gains bound lint test test-slow bench reproduce docs clean
 
@@ -49,11 +53,11 @@ lint: setup
 
 ## test: lint, generated-code staleness, fast tests
 test: setup lint
-	$(PY) -m pytest -m "not slow" -q
+	$(PY) -m pytest -m "not slow" -q $(PYTEST_PARALLEL)
 
 ## test-slow: the tests marked slow (full regeneration, independent derivation, wheel install)
 test-slow: setup
-	$(PY) -m pytest -m slow -q
+	$(PY) -m pytest -m slow -q $(PYTEST_PARALLEL)
 
 ## calibrate-table6: fit the estimated parameters to Table 6's 9 km/h cells (18 km/h held out) and
 ## the other way round; ships the two calibrated loader files (minutes)
