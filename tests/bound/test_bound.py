@@ -19,6 +19,7 @@ def _seat(result, weighting):
     return np.column_stack([result[s] - result[s][0] for s in weighting.signals])
 
 
+@pytest.mark.slow  # 14.5 s measured: two 3 s simulations with their first compilations
 def test_sampled_weighting_reads_the_reports_a_total(plant, road):
     """The bound's filters (exact ZOH sampling of Annex A) against the report's evaluation."""
     weighting = seat_weighting()

@@ -63,6 +63,7 @@ def _wheel_loader_plants() -> dict:
     return {load: resolve_plant(None, load, machine=WHEEL_LOADER) for load in ("empty", "full")}
 
 
+@pytest.mark.slow  # 7.3 s measured: a refinement of the wheel loader on a short course
 def test_wheel_loader_refinement_on_a_short_course_lowers_its_cost() -> None:
     """From the wheel loader's linear optimum on both loads, whose k_θ is beyond the settings
     file's ±100 (the norms are scaled to carry it), a few evaluations over the course's first

@@ -55,6 +55,7 @@ def test_controllers_map_to_their_circuit() -> None:
         PlantOptions.for_controller("")
 
 
+@pytest.mark.slow  # 7.5 s measured for the empty load
 @pytest.mark.parametrize("load", ["empty", "full"])
 def test_closed_valves_hold_the_boom_and_it_drifts_at_the_seal_leakage(load: str) -> None:
     params = plant_parameter_vector(None, load, SEALED)

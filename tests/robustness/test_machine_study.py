@@ -46,6 +46,7 @@ def test_study_file_names_the_machine_and_its_flat_paths() -> None:
         parse_study(STUDY.replace('"compact_wheel_loader"', '"no_such_machine"'))
 
 
+@pytest.mark.slow  # 12 s measured: a two-sample wheel-loader study (four runs)
 def test_wheel_loader_study_of_two_samples_runs(tmp_path: Path) -> None:
     started = time.perf_counter()
     table = run_study(parse_study(STUDY), tmp_path / "wl", workers=1, progress=False)

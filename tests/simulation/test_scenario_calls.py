@@ -130,6 +130,7 @@ def test_the_simulate_command_from_files_resolves_once(calls, capsys, controller
     assert _counts(calls) == _once(1, 1)
 
 
+@pytest.mark.slow  # 11.3 s measured: one robustness sample of every controller
 def test_a_robustness_sample_solves_one_equilibrium_per_plant(calls) -> None:
     """One sample, every controller and the pole margin of the gains: one resolve, and one
     equilibrium per distinct plant: open load-holding valves for the active controllers, closed
