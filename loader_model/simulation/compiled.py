@@ -30,7 +30,13 @@ from pathlib import Path
 
 import casadi as ca
 
-__all__ = ["COMPILER_FLAGS", "CompilationError", "cache_directory", "compiled_function"]
+__all__ = [
+    "COMPILER_FLAGS",
+    "CompilationError",
+    "cache_directory",
+    "cached_function",
+    "compiled_function",
+]
 
 #: Flags of the C compiler (``-O1`` compiles the closed-loop period in about 0.5 s and runs it as
 #: fast as ``-O3`` did, measured on the 9 km/h course run).
@@ -105,6 +111,36 @@ def _compile(source: str, library: Path, compiler: str) -> None:
         os.replace(output, library)
 
 
+def _library(function: ca.Function) -> tuple[str, str, Path]:
+    """(C source, compiler, library path in the cache) of ``function`` (module notes)."""
+    compiler = _compiler()
+    source = _source(function)
+    identity = "\n".join(
+        [source, compiler, *COMPILER_FLAGS, ca.__version__, sys.platform, platform.machine()]
+    )
+    digest = hashlib.sha256(identity.encode()).hexdigest()[:32]
+    return source, compiler, _writable_folder() / f"{function.name()}-{digest}.so"
+
+
+def _load(function: ca.Function, library: Path) -> ca.Function | None:
+    if not library.exists():
+        return None
+    try:
+        return ca.external(function.name(), str(library))
+    except RuntimeError:  # a damaged file (e.g. a disk that filled up): compile it again
+        return None
+
+
+def cached_function(function: ca.Function) -> ca.Function | None:
+    """``function``'s compiled library if the cache already holds it, else None (nothing is
+    compiled: for callers whose one use would not repay the compilation)."""
+    try:
+        _, _, library = _library(function)
+    except CompilationError:
+        return None
+    return _load(function, library)
+
+
 def compiled_function(function: ca.Function) -> ca.Function:
     """``function`` as C, compiled once into the cache and loaded from there (module notes).
 
@@ -123,17 +159,9 @@ def compiled_function(function: ca.Function) -> ca.Function:
     CompilationError
         Without a working C compiler.
     """
-    compiler = _compiler()
-    source = _source(function)
-    identity = "\n".join(
-        [source, compiler, *COMPILER_FLAGS, ca.__version__, sys.platform, platform.machine()]
-    )
-    digest = hashlib.sha256(identity.encode()).hexdigest()[:32]
-    library = _writable_folder() / f"{function.name()}-{digest}.so"
-    if library.exists():
-        try:
-            return ca.external(function.name(), str(library))
-        except RuntimeError:  # a damaged file (e.g. a disk that filled up): compile it again
-            pass
+    source, compiler, library = _library(function)
+    loaded = _load(function, library)
+    if loaded is not None:
+        return loaded
     _compile(source, library, compiler)
     return ca.external(function.name(), str(library))

@@ -66,6 +66,16 @@ def test_a_second_process_loads_the_library_without_compiling(tmp_path, monkeypa
     assert library.stat().st_mtime_ns == stamp, "loaded, not compiled again"
 
 
+def test_cached_function_never_compiles_and_loads_what_the_cache_holds(tmp_path, monkeypatch):
+    monkeypatch.setenv("LOADER_MODEL_CACHE_DIR", str(tmp_path))
+    assert compiled.cached_function(_function()) is None
+    assert not _libraries(tmp_path)
+    compiled.compiled_function(_function())
+    library = compiled.cached_function(_function())
+    assert library is not None and float(library(ca.DM([0, 3, 0]), 1.0)[1]) == 9.0
+    assert len(_libraries(tmp_path)) == 1
+
+
 def test_a_damaged_library_is_compiled_again(tmp_path, monkeypatch):
     monkeypatch.setenv("LOADER_MODEL_CACHE_DIR", str(tmp_path))
     compiled.compiled_function(_function())
