@@ -27,6 +27,8 @@ model's to 1e-14 and its path rows to 1e-15 relative. Built in O(N M n_z³): 0.6
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from loader_model.bound.problem import PATH_SIGNALS, BoundProblem
@@ -35,7 +37,7 @@ from loader_model.bound.trajectory import Linearisation, Trajectory
 from loader_model.bound.weighting import SeatWeighting
 from loader_model.plant.plant import OUTPUT_NAMES, STATE_NAMES
 
-__all__ = ["stage_qp"]
+__all__ = ["corrected_qp", "end_values", "stage_qp"]
 
 
 def stage_qp(
@@ -92,17 +94,15 @@ def stage_qp(
     static, lower, upper, scale = limits
     current = (trajectory.path() - static).reshape(n, m, n_p)
     path_rows *= dd / scale[None, None, :, None]
-    end_rows, end_target = [], []
-    for name, target in problem.end_targets.items():
+    end_rows = []
+    for name in problem.end_targets:
         row = np.zeros(nz)
         if name in STATE_NAMES:
             row[STATE_NAMES.index(name)] = 1.0
-            value = trajectory.states[-1, STATE_NAMES.index(name)]
         else:
             row[:nx] = linearisation.c[count, OUTPUT_NAMES.index(name)]
-            value = trajectory.outputs[-1, OUTPUT_NAMES.index(name)]
         end_rows.append(row * d)
-        end_target.append(target - value)
+    end_target = np.array(list(problem.end_targets.values())) - end_values(problem, trajectory)
     v = trajectory.command / u_scale
     return StageQP(
         transition=phi * d[None, None, :] / d[None, :, None],
@@ -115,5 +115,46 @@ def stage_qp(
         v_low=problem.u_bounds[0] / u_scale - v,
         v_high=problem.u_bounds[1] / u_scale - v,
         end_rows=np.array(end_rows),
-        end_target=np.array(end_target),
+        end_target=end_target,
+    )
+
+
+def end_values(problem: BoundProblem, trajectory: Trajectory) -> np.ndarray:
+    """The end condition's signals at the end of ``trajectory`` (states or outputs), in the
+    order of :attr:`~loader_model.bound.problem.BoundProblem.end_targets`."""
+    return np.array([
+        trajectory.states[-1, STATE_NAMES.index(name)] if name in STATE_NAMES
+        else trajectory.outputs[-1, OUTPUT_NAMES.index(name)]
+        for name in problem.end_targets
+    ])  # fmt: skip
+
+
+def corrected_qp(
+    qp: StageQP,
+    w: np.ndarray,
+    problem: BoundProblem,
+    trajectory: Trajectory,
+    candidate: Trajectory,
+    limits: tuple[np.ndarray, ...],
+) -> StageQP:
+    """``qp`` with its path rows and end condition shifted by the linearisation's error at its
+    step ``w`` (the second-order correction of SQP, Nocedal and Wright, 2006, § 18.3).
+
+    The error is what the simulated ``candidate`` (the trajectory of the step) gives minus what
+    the QP's rows predict for it; the corrected QP asks the *simulated* path values and end
+    values, to first order about the step, to meet the limits. Both QPs share the Hessian and
+    the gradient.
+    """
+    n = qp.command_map.shape[0]
+    scale = limits[3]
+    predicted = (qp.rows @ w[:, :, None])[:, :, 0]
+    simulated = ((candidate.path() - trajectory.path()) / scale).reshape(n, -1)
+    error = simulated - predicted
+    end_predicted = qp.end_rows @ (qp.stacked[-1] @ w[-1])
+    end_error = end_values(problem, candidate) - end_values(problem, trajectory) - end_predicted
+    return replace(
+        qp,
+        row_low=qp.row_low - error,
+        row_high=qp.row_high - error,
+        end_target=qp.end_target - end_error,
     )

@@ -174,10 +174,17 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
     if args.bound == "nonlinear":
         detail = (
             f" ({solved.iterations} SQP iterations, {solved.time_per_iteration_s:.1f} s each, "
-            f"{solved.qp_iterations} interior-point iterations, converged: {solved.converged}; "
+            f"{solved.qp_iterations} interior-point iterations, {solved.status}; "
             f"warm start a_total {solved.warm_a_total_m_s2:.4f})"
         )
     print(f"{args.bound} bound solved in {solved.solve_s:.2f} s{detail}")
+    if args.bound == "nonlinear" and solved.noise_floor is not None:
+        spread, violation = solved.noise_floor
+        print(
+            f"not converged: round-off-sized changes of its command spread the simulated "
+            f"a_total by {spread:.1e} (relative) and the largest violation by {violation:.1e} "
+            "of a limit (docs/guide/bound.md)"
+        )
     if args.bound == "constrained":
         print(
             "the constrained bound is the linear plant's: beside controllers in the nonlinear "

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from loader_model.bound.constrained import path_limits, solve_constrained_bound
+from loader_model.bound.feasibility import merit_noise_floor
 from loader_model.bound.nonlinear import solve_nonlinear_bound
 from loader_model.bound.problem import bound_problem
 from loader_model.bound.replay import replay
@@ -96,6 +97,18 @@ def test_rollout_is_the_simulators_replay(plant, road, problem):
     weighting = seat_weighting()
     theirs = np.column_stack([played[s] - played[s][0] for s in weighting.signals])
     assert np.max(np.abs(ours - theirs)) <= 1e-9 * np.max(np.abs(theirs))
+
+
+def test_the_noise_floor_is_zero_without_perturbation_and_tiny_on_a_small_board(plant, road):
+    """The simulator is deterministic (no perturbation: no spread), and on 0.5 s over the 5 mm
+    board, where nothing switches, round-off-sized changes of the command stay at round-off in
+    a_total (within 1e-12 relative) and in the largest violation (1e-12 of a limit)."""
+    problem = bound_problem(plant, road, duration_s=0.5)
+    command = plant.u0 + 0.1 * problem.u_bounds[1] * np.sin(np.arange(problem.intervals) / 4)
+    weighting = seat_weighting()
+    assert merit_noise_floor(problem, command, weighting, samples=2, relative=0.0) == (0.0, 0.0)
+    spread, violation = merit_noise_floor(problem, command, weighting)
+    assert spread <= 1e-12 and violation <= 1e-12
 
 
 def test_bad_inputs_name_the_argument(plant, road, problem):

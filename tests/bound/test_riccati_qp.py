@@ -127,6 +127,28 @@ def test_curvature_and_gradient_are_the_condensed_ones():
     assert np.max(np.abs(condensed_gradient(qp) - gradient)) <= 1e-12 * np.max(np.abs(gradient))
 
 
+def test_one_linearisation_does_not_compile_the_period(plant, road, tmp_path, monkeypatch):
+    """Without ``compile_missing`` and with an empty cache, :func:`linearise` runs the period in
+    CasADi's virtual machine and writes no library (its compilation, about 12 s, would not be
+    repaid by one linearisation); the result is the period Function's, to 1e-12."""
+    from loader_model.bound import trajectory as module
+
+    monkeypatch.setenv("LOADER_MODEL_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(module, "_MAPPED", {})
+    problem = bound_problem(plant, road, duration_s=0.05)
+    command = np.full(problem.intervals, plant.u0 + 0.2 * problem.u_bounds[1])
+    trajectory = rollout(problem, command)
+    linearisation = linearise(problem, trajectory)
+    assert not list(tmp_path.glob("bound_linearised_period-*"))
+    k = problem.periods - 1
+    out = linearised_period()(
+        trajectory.states[k], command[-1], problem.exogenous[k], problem.exogenous[k + 1],
+        plant.params,
+    )  # fmt: skip
+    expected = np.asarray(out[2])
+    assert np.max(np.abs(linearisation.a[k] - expected)) <= 1e-12 * np.max(np.abs(expected))
+
+
 def test_linearise_is_the_linearised_period_at_every_sampled_period(plant, road):
     """The compiled, chunked evaluation of :func:`linearise` against the period Function in
     CasADi's virtual machine at the chunks' edges: equal to 1e-12 of each matrix's size
@@ -134,7 +156,7 @@ def test_linearise_is_the_linearised_period_at_every_sampled_period(plant, road)
     problem = bound_problem(plant, road, duration_s=1.1)
     command = plant.u0 + 0.3 * problem.u_bounds[1] * np.sin(np.arange(problem.intervals) / 5)
     trajectory = rollout(problem, command)
-    linearisation = linearise(problem, trajectory)
+    linearisation = linearise(problem, trajectory, compile_missing=True)
     function = linearised_period()
     u_k = np.append(np.repeat(command, problem.hold_periods), command[-1])
     exo = problem.exogenous
@@ -185,3 +207,33 @@ def test_stage_rows_are_the_linearised_path_sensitivities(plant, road):
             assert np.max(np.abs(rows[:, signal, j] - product[:, signal])) <= 1e-9 * size
             error = np.max(np.abs(rows[:, signal, j] - finite[:, signal]))
             assert error <= finite_tolerance[signal] * np.max(np.abs(finite[:, signal]))
+
+
+def test_the_corrected_qp_predicts_the_simulated_step(plant, road):
+    """The second-order correction's rows and end condition, at the step they are made from,
+    equal the simulated step's path values and end values (the linearisation's error is put
+    back exactly, to 1e-9 of the limits), and they differ from the uncorrected rows by that
+    error (nonzero here: the step is large)."""
+    from loader_model.bound.riccati_qp import _forward
+    from loader_model.bound.stage_model import corrected_qp, end_values
+
+    problem = bound_problem(plant, road, duration_s=0.3)
+    scale = problem.u_bounds[1]
+    command = plant.u0 + 0.2 * scale * np.sin(np.arange(problem.intervals) / 3.0)
+    trajectory = rollout(problem, command)
+    limits = path_limits(problem)
+    qp = stage_qp(problem, trajectory, linearise(problem, trajectory), seat_weighting(), scale,
+                  limits)  # fmt: skip
+    step = 0.5 * np.cos(np.arange(problem.intervals) / 4.0)
+    w, z_end = _forward(qp, step)
+    candidate = rollout(problem, command + step * scale)
+    corrected = corrected_qp(qp, w, problem, trajectory, candidate, limits)
+    static, _, upper, size = limits
+    predicted = corrected.row_high - (qp.rows @ w[:, :, None])[:, :, 0]
+    simulated = ((upper - (candidate.path() - static)) / size).reshape(predicted.shape)
+    assert np.max(np.abs(predicted - simulated)) <= 1e-9
+    assert np.max(np.abs(corrected.row_high - qp.row_high)) >= 1e-4
+    targets = np.array(list(problem.end_targets.values()))
+    ends = corrected.end_target - qp.end_rows @ z_end
+    expected = targets - end_values(problem, candidate)
+    assert np.max(np.abs(ends - expected) / (np.abs(targets) + scale + 1e-3)) <= 1e-9
