@@ -37,9 +37,9 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
-import scipy.linalg
 
 from loader_model.bound.dense_qp import QPResult
+from loader_model.bound.riccati_kernels import recur, riccati_factor, riccati_solve
 
 __all__ = ["StageQP", "condensed_gradient", "mean_condensed_curvature", "solve_riccati_qp"]
 
@@ -88,6 +88,11 @@ class StageQP:
         return np.ascontiguousarray(self.transition[::-1])
 
     @cached_property
+    def contiguous_transition(self) -> np.ndarray:
+        """(N, n_z, n_z) F_j, C-contiguous (the compiled Riccati sweeps read it)."""
+        return np.ascontiguousarray(self.transition, dtype=float)
+
+    @cached_property
     def stacked(self) -> np.ndarray:
         """(N, n_z, n_z + 1) [F_j G_j], the dynamics' map of w_j."""
         return np.concatenate([self.transition, self.command_map[:, :, None]], axis=2)
@@ -95,15 +100,10 @@ class StageQP:
 
 def _recur(columns: np.ndarray, offsets: np.ndarray, first: np.ndarray) -> np.ndarray:
     """x_0 = ``first``, x_{i+1} = A_i x_i + b_i: all (N + 1, n_z[, c]) x_i, with ``columns``
-    (N, n_z, n_z) holding A_iᵀ and ``offsets`` (N, n_z[, c]) the b_i: one product and one sum per
-    stage (3 µs per stage of 43 states; CasADi's compiled mapaccum of the same step took 3.6)."""
-    out = np.empty((offsets.shape[0] + 1, *first.shape))
-    out[0] = x = first.copy()
-    for i in range(offsets.shape[0]):
-        x = columns[i].T @ x
-        x += offsets[i]
-        out[i + 1] = x
-    return out
+    (N, n_z, n_z) holding A_iᵀ and ``offsets`` (N, n_z[, c]) the b_i (compiled:
+    :func:`~loader_model.bound.riccati_kernels.recur`; in NumPy it took 3-7 µs per stage of 43
+    states, and CasADi's compiled mapaccum of the same step 3.6 µs)."""
+    return recur(columns, offsets, first)
 
 
 def _forward(qp: StageQP, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -139,27 +139,12 @@ def mean_condensed_curvature(qp: StageQP) -> float:
     return trace / n
 
 
-def _square_root(schur: np.ndarray) -> np.ndarray:
-    """A factor L with L Lᵀ = ``schur`` (positive semi-definite up to round-off): Cholesky, or,
-    where round-off made a pivot negative (rows of a near-active limit nearly along the command,
-    whose barrier term cancels in the Schur complement), the eigenvalues clipped at zero."""
-    factor, info = scipy.linalg.lapack.dpotrf(schur, lower=1)
-    if info == 0:
-        return factor
-    values, vectors = np.linalg.eigh(0.5 * (schur + schur.T))
-    return vectors * np.sqrt(np.maximum(values, 0.0))
-
-
 @dataclass(frozen=True)
 class _Factor:
-    """The Riccati recursion of one set of stage Hessians: S̄_j (N, n_z), R̄_j (N,) and the
-    closed-loop maps F_j − G_j S̄_j / R̄_j (N, n_z, n_z): transposed, and in reverse order, as
-    :func:`_recur` reads the forward and backward sweeps' maps."""
+    """The Riccati recursion of one set of stage Hessians: S̄_j (N, n_z) and R̄_j (N,)."""
 
     s_bar: np.ndarray
     r_bar: np.ndarray
-    closed_t: np.ndarray
-    closed_reversed: np.ndarray
 
 
 def _factor(qp: StageQP, hessian: np.ndarray) -> _Factor:
@@ -167,23 +152,16 @@ def _factor(qp: StageQP, hessian: np.ndarray) -> _Factor:
 
     The cost-to-go P_j is carried as a factor L_j (P_j = L_j L_jᵀ, the square-root form), so
     that every M_j = H̃_j + [F_j G_j]ᵀ P_{j+1} [F_j G_j] is a sum of Gram matrices: R̄_j, its
-    command entry, is positive whatever the round-off, and P_j stays semi-definite."""
-    n, nz = qp.command_map.shape
-    s_bar, r_bar = np.empty((n, nz)), np.empty(n)
-    factor, stacked = np.zeros((nz, nz)), qp.stacked
-    for j in range(n - 1, -1, -1):
-        mapped = factor.T @ stacked[j]
-        m = hessian[j] + mapped.T @ mapped
-        s_bar[j], r_bar[j] = m[nz, :nz], m[nz, nz]
-        if not r_bar[j] > 0.0:
-            raise np.linalg.LinAlgError(f"stage {j}: the Riccati recursion's R̄ is {r_bar[j]:g}")
-        factor = _square_root(m[:nz, :nz] - s_bar[j][:, None] * (s_bar[j] / r_bar[j]))
-    gain = s_bar / r_bar[:, None]
-    closed = qp.transition - qp.command_map[:, :, None] * gain[:, None, :]
-    return _Factor(
-        s_bar, r_bar, np.ascontiguousarray(closed.transpose(0, 2, 1)),
-        np.ascontiguousarray(closed[::-1]),
-    )  # fmt: skip
+    command entry, is positive whatever the round-off, and P_j stays semi-definite; the next
+    factor is the Cholesky factor of M_j's Schur complement, or, where round-off made a pivot
+    negative (rows of a near-active limit nearly along the command, whose barrier term cancels
+    in the Schur complement), its eigenvalues clipped at zero
+    (:func:`~loader_model.bound.riccati_kernels.riccati_factor`)."""
+    s_bar, r_bar, failed = riccati_factor(qp.stacked, np.ascontiguousarray(hessian))
+    if failed >= 0 or not (np.all(np.isfinite(s_bar)) and np.all(np.isfinite(r_bar))):
+        stage = failed if failed >= 0 else int(np.argmin(np.isfinite(r_bar)))
+        raise np.linalg.LinAlgError(f"stage {stage}: the Riccati recursion's R̄ is {r_bar[stage]:g}")
+    return _Factor(s_bar, r_bar)
 
 
 def _solve(
@@ -193,16 +171,12 @@ def _solve(
 
     With the value's linear term p_j and the feedforward k_j = −(r_j + G_jᵀ p_{j+1}) / R̄_j,
     p_j = q_j − S̄_jᵀ r_j / R̄_j + (F_j − G_j S̄_j / R̄_j)ᵀ p_{j+1}, and forward
-    z_{j+1} = (F_j − G_j S̄_j / R̄_j) z_j + G_j k_j, v_j = k_j − S̄_j z_j / R̄_j."""
-    n, nz = qp.command_map.shape
-    s_bar, r_bar = factor.s_bar, factor.r_bar
-    q, r = linear[:, :nz], linear[:, nz]  # (N, n_z, c), (N, c)
-    offsets = q - s_bar[:, :, None] * (r / r_bar[:, None])[:, None, :]
-    p = _recur(factor.closed_reversed, offsets[::-1], end)[::-1]  # p_0 … p_N
-    feed = -(r + np.einsum("jk,jkc->jc", qp.command_map, p[1:])) / r_bar[:, None]
-    z = _recur(factor.closed_t, qp.command_map[:, :, None] * feed[:, None, :], np.zeros_like(end))
-    v = feed - np.einsum("jk,jkc->jc", s_bar, z[:n]) / r_bar[:, None]
-    return np.concatenate([z[:n], v[:, None, :]], axis=1), z[n]
+    z_{j+1} = (F_j − G_j S̄_j / R̄_j) z_j + G_j k_j, v_j = k_j − S̄_j z_j / R̄_j
+    (:func:`~loader_model.bound.riccati_kernels.riccati_solve`)."""
+    return riccati_solve(
+        qp.contiguous_transition, qp.command_map, factor.s_bar, factor.r_bar,
+        np.ascontiguousarray(linear, dtype=float), np.ascontiguousarray(end, dtype=float),
+    )  # fmt: skip
 
 
 def _step(values: np.ndarray, steps: np.ndarray) -> float:
@@ -295,7 +269,7 @@ def solve_riccati_qp(
         ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
             """The LQ step (dw, dz_N, ν) of linear terms ``linear`` with E dz_N = end_target,
             refined against the exact stage Hessians (the factor is of a semi-definite
-            repair where round-off made the recursion indefinite: :func:`_square_root`)."""
+            repair where round-off made the recursion indefinite: :func:`_factor`)."""
             step = np.zeros((n, nz + 1)), np.zeros(nz), np.zeros(n_e)
             residual_linear, residual_end = linear, end_target
             for refinement in range(1 + REFINEMENTS):

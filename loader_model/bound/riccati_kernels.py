@@ -1,0 +1,191 @@
+"""The stage loops of :mod:`~loader_model.bound.riccati_qp`, compiled by Numba.
+
+Two loops run over every stage of the course in each interior-point iteration: the linear
+recurrence x_{i+1} = A_i x_i + b_i of the forward, adjoint and Riccati sweeps
+(:func:`recur`), about 13 sweeps per iteration, and the backward Riccati factorisation in
+square-root form (:func:`riccati_factor`), once. With 43 states per stage, their arithmetic is
+small matrix products whose cost in NumPy is the call overhead of each product (3-7 µs per
+stage); compiled, the loops run without it. Measured on the development machine on the 12 s
+problem (N = 1200 stages, the Gauss-Newton QP at the static command): a recurrence 0.64 ms
+against 9.9 ms with NumPy, the factorisation 39 ms against 146 ms (under the load of a second
+job). ``cache=True`` keeps the machine code beside the module (or in ``NUMBA_CACHE_DIR``), so
+the compilation (a few seconds) is paid once per machine.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+__all__ = ["recur", "riccati_factor", "riccati_solve"]
+
+
+@njit(cache=True)
+def _recur_vectors(columns: np.ndarray, offsets: np.ndarray, first: np.ndarray) -> np.ndarray:
+    n, nz = offsets.shape
+    out = np.empty((n + 1, nz))
+    out[0] = first
+    for i in range(n):
+        a = columns[i]
+        for r in range(nz):
+            out[i + 1, r] = offsets[i, r]
+        for k in range(nz):
+            xk = out[i, k]
+            for r in range(nz):
+                out[i + 1, r] += a[k, r] * xk
+    return out
+
+
+@njit(cache=True)
+def _recur_columns(columns: np.ndarray, offsets: np.ndarray, first: np.ndarray) -> np.ndarray:
+    n, nz, c = offsets.shape
+    out = np.empty((n + 1, nz, c))
+    out[0] = first
+    for i in range(n):
+        a = columns[i]
+        for r in range(nz):
+            for q in range(c):
+                out[i + 1, r, q] = offsets[i, r, q]
+        for k in range(nz):
+            for r in range(nz):
+                akr = a[k, r]
+                for q in range(c):
+                    out[i + 1, r, q] += akr * out[i, k, q]
+    return out
+
+
+def recur(columns: np.ndarray, offsets: np.ndarray, first: np.ndarray) -> np.ndarray:
+    """x_0 = ``first``, x_{i+1} = A_i x_i + b_i: all (N + 1, n_z[, c]) x_i, with ``columns``
+    (N, n_z, n_z) holding A_iᵀ (C-contiguous) and ``offsets`` (N, n_z[, c]) the b_i."""
+    first = np.asarray(first, dtype=float)
+    if offsets.ndim == 2:
+        return _recur_vectors(columns, np.ascontiguousarray(offsets, dtype=float), first.copy())
+    if offsets.shape[2] == 1:
+        return _recur_vectors(
+            columns, np.ascontiguousarray(offsets[:, :, 0], dtype=float), first[:, 0].copy()
+        )[:, :, None]
+    return _recur_columns(columns, np.ascontiguousarray(offsets, dtype=float), first.copy())
+
+
+@njit(cache=True)
+def _cholesky(matrix: np.ndarray, out: np.ndarray) -> bool:
+    """Lower Cholesky factor of ``matrix`` into ``out``; False where a pivot is not positive."""
+    nz = matrix.shape[0]
+    for j in range(nz):
+        pivot = matrix[j, j]
+        for k in range(j):
+            pivot -= out[j, k] * out[j, k]
+        if not pivot > 0.0:
+            return False
+        d = np.sqrt(pivot)
+        out[j, j] = d
+        for i in range(j + 1, nz):
+            t = matrix[i, j]
+            for k in range(j):
+                t -= out[i, k] * out[j, k]
+            out[i, j] = t / d
+        for i in range(j):
+            out[i, j] = 0.0
+    return True
+
+
+@njit(cache=True)
+def riccati_factor(stacked: np.ndarray, hessian: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
+    """The backward Riccati recursion in square-root form (:func:`~loader_model.bound.
+    riccati_qp._factor`): S̄_j (N, n_z), R̄_j (N,) and a status, −1 when it ran through, else
+    the stage j whose R̄_j was not positive.
+
+    ``stacked`` (N, n_z, n_z + 1) holds [F_j G_j], ``hessian`` (N, n_z + 1, n_z + 1) the stage
+    Hessians. The cost-to-go P_{j+1} = L Lᵀ is carried as L: M_j = H_j + [F_j G_j]ᵀ L Lᵀ
+    [F_j G_j], and the next L is the Cholesky factor of the Schur complement of M_j's command
+    entry, or, where round-off made a pivot negative, its eigen-decomposition with the negative
+    eigenvalues clipped at zero.
+    """
+    n, nz = stacked.shape[0], stacked.shape[1]
+    s_bar, r_bar = np.empty((n, nz)), np.empty(n)
+    factor = np.zeros((nz, nz))
+    schur = np.empty((nz, nz))
+    for j in range(n - 1, -1, -1):
+        mapped = np.dot(factor.T, stacked[j])
+        m = hessian[j] + np.dot(mapped.T, mapped)
+        r = m[nz, nz]
+        r_bar[j] = r
+        s_bar[j] = m[nz, :nz]
+        if not r > 0.0:
+            return s_bar, r_bar, j
+        for a in range(nz):
+            for b in range(nz):
+                schur[a, b] = m[a, b] - m[nz, a] * (m[nz, b] / r)
+        if not _cholesky(schur, factor):
+            values, vectors = np.linalg.eigh(0.5 * (schur + schur.T))
+            for a in range(nz):
+                root = np.sqrt(max(values[a], 0.0))
+                for b in range(nz):
+                    factor[b, a] = vectors[b, a] * root
+    return s_bar, r_bar, -1
+
+
+@njit(cache=True)
+def riccati_solve(
+    transition: np.ndarray,
+    command_map: np.ndarray,
+    s_bar: np.ndarray,
+    r_bar: np.ndarray,
+    linear: np.ndarray,
+    end: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray]:
+    """The LQ step of :func:`~loader_model.bound.riccati_qp._solve` for each column c of
+    ``linear`` (N, n_z + 1, c) and ``end`` (n_z, c): w (N, n_z + 1, c) and z_N (n_z, c).
+
+    The closed-loop maps F_j − G_j S̄_jᵀ / R̄_j are never formed: their products are
+    F_jᵀ p − S̄_j (G_jᵀ p) / R̄_j backwards and F_j z − G_j (S̄_jᵀ z) / R̄_j forwards.
+    """
+    n, nz = command_map.shape
+    columns = linear.shape[2]
+    w = np.empty((n, nz + 1, columns))
+    z_end = np.empty((nz, columns))
+    p_next = np.empty(nz)
+    p = np.empty(nz)
+    feed = np.empty(n)
+    z = np.empty(nz)
+    z_new = np.empty(nz)
+    for c in range(columns):
+        for a in range(nz):
+            p_next[a] = end[a, c]
+        for j in range(n - 1, -1, -1):
+            g_p = 0.0
+            for a in range(nz):
+                g_p += command_map[j, a] * p_next[a]
+            r_j = linear[j, nz, c]
+            feed[j] = -(r_j + g_p) / r_bar[j]
+            shift = (r_j + g_p) / r_bar[j]
+            for a in range(nz):
+                p[a] = linear[j, a, c] - s_bar[j, a] * shift
+            f = transition[j]
+            for row in range(nz):
+                pr = p_next[row]
+                for a in range(nz):
+                    p[a] += f[row, a] * pr
+            for a in range(nz):
+                p_next[a] = p[a]
+        for a in range(nz):
+            z[a] = 0.0
+        for j in range(n):
+            s_z = 0.0
+            for a in range(nz):
+                s_z += s_bar[j, a] * z[a]
+            v = feed[j] - s_z / r_bar[j]
+            for a in range(nz):
+                w[j, a, c] = z[a]
+            w[j, nz, c] = v
+            f = transition[j]
+            for row in range(nz):
+                acc = command_map[j, row] * v
+                for a in range(nz):
+                    acc += f[row, a] * z[a]
+                z_new[row] = acc
+            for a in range(nz):
+                z[a] = z_new[a]
+        for a in range(nz):
+            z_end[a, c] = z[a]
+    return w, z_end
