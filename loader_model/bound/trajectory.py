@@ -148,30 +148,40 @@ def _mapped_linearised_period(compile_missing: bool) -> ca.Function:
 
 
 def rollout(problem: BoundProblem, command: np.ndarray) -> Trajectory:
-    """Simulate ``command`` (N values in m³/rev, each held M periods) from the equilibrium."""
+    """Simulate ``command`` (N values in m³/rev, each held M periods) from the equilibrium.
+
+    The chunks run through the mapped period's function buffer, as the simulator's do (NumPy
+    memory in and out, no conversion to CasADi matrices: the 11.55 s paper course at 18 km/h in
+    0.12 s against 0.32-0.44 s with the converted call, the same trajectory to the last bit;
+    development machine)."""
     command = np.asarray(command, dtype=float).ravel()
     if command.size != problem.intervals:
         raise ValueError(f"command must have {problem.intervals} values; got {command.size}")
     count, plant = problem.periods, problem.plant
     exo = problem.exogenous
     u_k = np.repeat(command, problem.hold_periods)
-    nx, ny = len(STATE_NAMES), len(OUTPUT_NAMES)
+    nx, ny, nw = len(STATE_NAMES), len(OUTPUT_NAMES), exo.shape[1]
     states, outputs = np.empty((count + 1, nx)), np.empty((count + 1, ny))
+    # column-major CasADi matrices read as C-order (chunk, n) arrays
     carry = np.concatenate([plant.x0, [plant.u0]])
-    zeros = np.zeros(ny)
+    w0, w1 = np.empty((_CHUNK, nw)), np.empty((_CHUNK, nw))
+    params = np.ascontiguousarray(np.tile(plant.params[None, :], (_CHUNK, 1)))
+    settings, zeros = np.empty(_CHUNK), np.zeros((_CHUNK, ny))
+    block, y_block, u_block = np.empty((_CHUNK, nx + 1)), np.empty((_CHUNK, ny)), np.empty(_CHUNK)
+    buffer, evaluate = _rolled(_CHUNK).buffer()
+    for index, array in enumerate((carry, w0, w1, params, settings, zeros, zeros)):
+        buffer.set_arg(index, memoryview(array))
+    for index, array in enumerate((block, y_block, u_block)):
+        buffer.set_res(index, memoryview(array))
     for start in range(0, count, _CHUNK):
         size = min(_CHUNK, count - start)
         rows = np.arange(start, start + _CHUNK).clip(max=count - 1)
-        settings = u_k[rows][None, :]
-        out = _rolled(_CHUNK)(
-            carry, exo[rows].T, exo[rows + 1].T, np.tile(plant.params[:, None], (1, _CHUNK)),
-            settings, np.zeros((ny, _CHUNK)), np.tile(zeros[:, None], (1, _CHUNK)),
-        )  # fmt: skip
-        block = np.asarray(out[0]).T
+        w0[:], w1[:], settings[:] = exo[rows], exo[rows + 1], u_k[rows]
+        evaluate()
         states[start] = carry[:nx]
         states[start + 1 : start + size] = block[: size - 1, :nx]
-        outputs[start : start + size] = np.asarray(out[1]).T[:size]
-        carry = block[size - 1]
+        outputs[start : start + size] = y_block[:size]
+        carry[:] = block[size - 1]
     states[count] = carry[:nx]
     outputs[count] = np.asarray(
         plant_function()(carry[:nx], carry[nx], exo[count], plant.params)[1]
