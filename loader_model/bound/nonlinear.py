@@ -6,12 +6,13 @@ a_total (Eq. 49, 50, the sampled weightings of :mod:`~loader_model.bound.weighti
 the optimal command gives when replayed open loop (:func:`~loader_model.bound.replay.replay`).
 One iteration: linearise along the trajectory with the flow's sensitivities
 (:func:`~loader_model.bound.trajectory.linearise`), build the Gauss-Newton QP in stage form
-(:func:`~loader_model.bound.stage_model.stage_qp`: one stage per command interval, every path
+(:func:`~loader_model.bound.stage_model.stage_qp`: a stage per few command intervals, every path
 sample a row of its stage), solve it with the command box, the end condition and all path
 limits by the Riccati interior point (:func:`~loader_model.bound.riccati_qp.solve_riccati_qp`,
-cost linear in the course's length), with Levenberg-Marquardt damping relative to the condensed
-Hessian's mean diagonal if needed, then a backtracking line search on the merit
-a_total² + ρ × (largest relative violation of the path limits and the end condition) of the
+cost linear in the course's length; about 4 command intervals per stage,
+:func:`~loader_model.bound.stage_model.stage_block`), with Levenberg-Marquardt damping
+relative to the condensed Hessian's mean diagonal if needed, then a backtracking line search on
+the merit a_total² + ρ × (largest relative violation of the path limits and the end condition) of the
 TRUE simulated trajectory. When the full step raises the simulated violation, the QP is
 solved once more with its rows shifted by the linearisation's error at that step (the
 second-order correction, :func:`~loader_model.bound.stage_model.corrected_qp`) and that step
@@ -42,7 +43,7 @@ from loader_model.bound.feasibility import (
 )
 from loader_model.bound.problem import BoundProblem
 from loader_model.bound.riccati_qp import StageQP, mean_condensed_curvature, solve_riccati_qp
-from loader_model.bound.stage_model import corrected_qp, stage_qp
+from loader_model.bound.stage_model import corrected_qp, stage_block, stage_qp
 from loader_model.bound.trajectory import DivergedRollout, Trajectory, linearise, rollout
 from loader_model.bound.weighting import SeatWeighting, seat_weighting
 from loader_model.simulation.result import SimulationResult
@@ -54,7 +55,12 @@ __all__ = ["NonlinearBound", "solve_nonlinear_bound"]
 #: one SQP iteration took about 6 s at 12 s).
 MAX_NONLINEAR_INTERVALS = 2000
 #: Relative tolerance of each QP (:mod:`~loader_model.bound.dense_qp`'s residuals and gap).
-QP_TOLERANCE = 1e-8
+#: Every step is judged by the simulated merit, whose noise floor on 12 s is 5e-5 of a_total
+#: (:func:`~loader_model.bound.feasibility.merit_noise_floor`), so the QP's objective needs no
+#: more than 1e-6; at 1e-8 the dual residual met its round-off floor (4e-8 ... 0.5 once the
+#: barrier terms reached 1e16) and QPs ran to their iteration limit (measured on the 11.55 s
+#: paper course at 18 km/h: 8 of 57 QPs, 100 of the solve's 324 s).
+QP_TOLERANCE = 1e-6
 #: Levenberg-Marquardt damping tries per linearisation (1e-9, 1e-6, 1e-3 of the mean curvature).
 DAMPING_TRIES = 3
 #: Penalty weight of the merit's constraint violation, relative to the warm start's a_total².
@@ -223,6 +229,7 @@ def solve_nonlinear_bound(
     limits = path_limits(problem)
     end_units = end_scale(problem)
     command = _warm_command(problem, warm)
+    block = stage_block(problem.intervals)
     trajectory = rollout(problem, command)
     a_warm = weighting.a_total(trajectory.seat())
     rho = PENALTY * a_warm**2
@@ -256,7 +263,9 @@ def solve_nonlinear_bound(
                 result, _ = solve_riccati_qp(corrected, tolerance=QP_TOLERANCE)
         except (np.linalg.LinAlgError, FloatingPointError):
             return None, 0
-        return result.u, result.iterations
+        # an infeasible corrected QP (its rows shifted past what the command can meet) gives
+        # no step worth a simulation
+        return (result.u if result.converged else None), result.iterations
 
     history, qp_iterations, converged, iterations = [a_total], 0, False, 0
     restorations, corrections, timings = 0, 0, {}
@@ -268,7 +277,10 @@ def solve_nonlinear_bound(
             with _timed(timings, "linearise"):
                 linearisation = linearise(problem, trajectory, compile_missing=True)
             with np.errstate(over="ignore", invalid="ignore"), _timed(timings, "model"):
-                model = stage_qp(problem, trajectory, linearisation, weighting, scale, limits)
+                model = stage_qp(
+                    problem, trajectory, linearisation, weighting, scale, limits, block
+                )
+                inputs = np.arange(model.states, model.states + block)
                 curvature = mean_condensed_curvature(model)
             if not all(
                 np.all(np.isfinite(x)) for x in (model.hessian, model.rows, model.transition)
@@ -278,7 +290,7 @@ def solve_nonlinear_bound(
             accepted, damping = False, 1e-9
             for attempt in range(DAMPING_TRIES + 1):
                 hessian = model.hessian.copy()
-                hessian[:, -1, -1] += damping * curvature
+                hessian[:, inputs, inputs] += damping * curvature
                 # the last attempt is the restoration step: the nearest point (in the damped
                 # Hessian's metric) that meets the linearised limits and end condition
                 restore = attempt == DAMPING_TRIES

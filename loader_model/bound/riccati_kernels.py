@@ -90,39 +90,66 @@ def _cholesky(matrix: np.ndarray, out: np.ndarray) -> bool:
 
 
 @njit(cache=True)
+def _cholesky_solve(low: np.ndarray, rhs: np.ndarray, out: np.ndarray) -> None:
+    """``out`` = (L Lᵀ)⁻¹ ``rhs`` for the lower factor ``low`` (forward, then back substitution)."""
+    nu = low.shape[0]
+    for a in range(nu):
+        t = rhs[a]
+        for b in range(a):
+            t -= low[a, b] * out[b]
+        out[a] = t / low[a, a]
+    for a in range(nu - 1, -1, -1):
+        t = out[a]
+        for b in range(a + 1, nu):
+            t -= low[b, a] * out[b]
+        out[a] = t / low[a, a]
+
+
+@njit(cache=True)
 def riccati_factor(stacked: np.ndarray, hessian: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
     """The backward Riccati recursion in square-root form (:func:`~loader_model.bound.
-    riccati_qp._factor`): S̄_j (N, n_z), R̄_j (N,) and a status, −1 when it ran through, else
-    the stage j whose R̄_j was not positive.
+    riccati_qp._factor`): S̄_j (N, n_u, n_z), the lower Cholesky factors of R̄_j (N, n_u, n_u)
+    and a status, −1 when it ran through, else the stage j whose R̄_j was not positive definite.
 
-    ``stacked`` (N, n_z, n_z + 1) holds [F_j G_j], ``hessian`` (N, n_z + 1, n_z + 1) the stage
-    Hessians. The cost-to-go P_{j+1} = L Lᵀ is carried as L: M_j = H_j + [F_j G_j]ᵀ L Lᵀ
+    ``stacked`` (N, n_z, n_z + n_u) holds [F_j G_j], ``hessian`` (N, n_z + n_u, n_z + n_u) the
+    stage Hessians. The cost-to-go P_{j+1} = L Lᵀ is carried as L: M_j = H_j + [F_j G_j]ᵀ L Lᵀ
     [F_j G_j], and the next L is the Cholesky factor of the Schur complement of M_j's command
-    entry, or, where round-off made a pivot negative, its eigen-decomposition with the negative
-    eigenvalues clipped at zero.
+    block, M_zz − S̄ᵀ R̄⁻¹ S̄ = M_zz − Xᵀ X with X = L_R⁻¹ S̄, or, where round-off made a pivot
+    negative, its eigen-decomposition with the negative eigenvalues clipped at zero.
     """
     n, nz = stacked.shape[0], stacked.shape[1]
-    s_bar, r_bar = np.empty((n, nz)), np.empty(n)
+    nu = stacked.shape[2] - nz
+    s_bar, r_low = np.empty((n, nu, nz)), np.zeros((n, nu, nu))
     factor = np.zeros((nz, nz))
     schur = np.empty((nz, nz))
+    x = np.empty((nu, nz))
     for j in range(n - 1, -1, -1):
         mapped = np.dot(factor.T, stacked[j])
         m = hessian[j] + np.dot(mapped.T, mapped)
-        r = m[nz, nz]
-        r_bar[j] = r
-        s_bar[j] = m[nz, :nz]
-        if not r > 0.0:
-            return s_bar, r_bar, j
+        for a in range(nu):
+            for b in range(nz):
+                s_bar[j, a, b] = m[nz + a, b]
+        if not _cholesky(m[nz:, nz:].copy(), r_low[j]):
+            return s_bar, r_low, j
+        for b in range(nz):  # X = L_R⁻¹ S̄, column by column
+            for a in range(nu):
+                t = m[nz + a, b]
+                for k in range(a):
+                    t -= r_low[j, a, k] * x[k, b]
+                x[a, b] = t / r_low[j, a, a]
         for a in range(nz):
             for b in range(nz):
-                schur[a, b] = m[a, b] - m[nz, a] * (m[nz, b] / r)
+                t = m[a, b]
+                for k in range(nu):
+                    t -= x[k, a] * x[k, b]
+                schur[a, b] = t
         if not _cholesky(schur, factor):
             values, vectors = np.linalg.eigh(0.5 * (schur + schur.T))
             for a in range(nz):
                 root = np.sqrt(max(values[a], 0.0))
                 for b in range(nz):
                     factor[b, a] = vectors[b, a] * root
-    return s_bar, r_bar, -1
+    return s_bar, r_low, -1
 
 
 @njit(cache=True)
@@ -130,37 +157,45 @@ def riccati_solve(
     transition: np.ndarray,
     command_map: np.ndarray,
     s_bar: np.ndarray,
-    r_bar: np.ndarray,
+    r_low: np.ndarray,
     linear: np.ndarray,
     end: np.ndarray,
 ) -> tuple[np.ndarray, np.ndarray]:
     """The LQ step of :func:`~loader_model.bound.riccati_qp._solve` for each column c of
-    ``linear`` (N, n_z + 1, c) and ``end`` (n_z, c): w (N, n_z + 1, c) and z_N (n_z, c).
+    ``linear`` (N, n_z + n_u, c) and ``end`` (n_z, c): w (N, n_z + n_u, c) and z_N (n_z, c).
 
-    The closed-loop maps F_j − G_j S̄_jᵀ / R̄_j are never formed: their products are
-    F_jᵀ p − S̄_j (G_jᵀ p) / R̄_j backwards and F_j z − G_j (S̄_jᵀ z) / R̄_j forwards.
+    Backwards, with r̃_j = r_j + G_jᵀ p_{j+1}, the feedforward k_j = −R̄_j⁻¹ r̃_j and
+    p_j = q_j + F_jᵀ p_{j+1} + S̄_jᵀ k_j; forwards v_j = k_j − R̄_j⁻¹ S̄_j z_j and
+    z_{j+1} = F_j z_j + G_j v_j. The closed-loop maps are never formed.
     """
-    n, nz = command_map.shape
+    n, nz, nu = command_map.shape
     columns = linear.shape[2]
-    w = np.empty((n, nz + 1, columns))
+    w = np.empty((n, nz + nu, columns))
     z_end = np.empty((nz, columns))
     p_next = np.empty(nz)
     p = np.empty(nz)
-    feed = np.empty(n)
+    feed = np.empty((n, nu))
+    rhs, k = np.empty(nu), np.empty(nu)
     z = np.empty(nz)
     z_new = np.empty(nz)
     for c in range(columns):
         for a in range(nz):
             p_next[a] = end[a, c]
         for j in range(n - 1, -1, -1):
-            g_p = 0.0
+            g = command_map[j]
+            for u in range(nu):
+                t = linear[j, nz + u, c]
+                for a in range(nz):
+                    t += g[a, u] * p_next[a]
+                rhs[u] = -t
+            _cholesky_solve(r_low[j], rhs, k)
+            for u in range(nu):
+                feed[j, u] = k[u]
             for a in range(nz):
-                g_p += command_map[j, a] * p_next[a]
-            r_j = linear[j, nz, c]
-            feed[j] = -(r_j + g_p) / r_bar[j]
-            shift = (r_j + g_p) / r_bar[j]
-            for a in range(nz):
-                p[a] = linear[j, a, c] - s_bar[j, a] * shift
+                t = linear[j, a, c]
+                for u in range(nu):
+                    t += s_bar[j, u, a] * k[u]
+                p[a] = t
             f = transition[j]
             for row in range(nz):
                 pr = p_next[row]
@@ -171,16 +206,22 @@ def riccati_solve(
         for a in range(nz):
             z[a] = 0.0
         for j in range(n):
-            s_z = 0.0
-            for a in range(nz):
-                s_z += s_bar[j, a] * z[a]
-            v = feed[j] - s_z / r_bar[j]
+            for u in range(nu):
+                t = 0.0
+                for a in range(nz):
+                    t += s_bar[j, u, a] * z[a]
+                rhs[u] = t
+            _cholesky_solve(r_low[j], rhs, k)
             for a in range(nz):
                 w[j, a, c] = z[a]
-            w[j, nz, c] = v
+            for u in range(nu):
+                w[j, nz + u, c] = feed[j, u] - k[u]
             f = transition[j]
+            g = command_map[j]
             for row in range(nz):
-                acc = command_map[j, row] * v
+                acc = 0.0
+                for u in range(nu):
+                    acc += g[row, u] * w[j, nz + u, c]
                 for a in range(nz):
                     acc += f[row, a] * z[a]
                 z_new[row] = acc

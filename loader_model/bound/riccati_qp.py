@@ -6,7 +6,8 @@ r"""A convex QP in stage form solved by a primal-dual interior point with a Ricc
     \text{s.t.}\quad l_j \le D_j w_j \le h_j,\quad v_{lo,j} \le v_j \le v_{hi,j},\quad
     E z_N = e
 
-with one input per stage (the command) and n_z states. It is the algorithm of
+with n_u inputs per stage (commands: the nonlinear bound puts several command intervals in one
+stage, :mod:`~loader_model.bound.stage_model`) and n_z states. It is the algorithm of
 :mod:`~loader_model.bound.dense_qp` (Mehrotra predictor-corrector on the same residuals and
 the same relative tolerances, the variables the commands v) with the dense algebra replaced by
 the stage structure: the products with the condensed Hessian and rows are forward and adjoint
@@ -27,8 +28,26 @@ exact stage Hessians; without it the dual residual stalled at 2e-2 (with it: 30 
 1e-8). Measured on the development machine (2 cores): the nonlinear bound's Gauss-Newton QP of
 the 3 s, 5 mm course (N = 300) in 21 iterations, 0.7 s (the dense interior point with constraint
 generation on the condensed form 0.85 s, the same objective to 6e-8); 6 s of the paper course
-(N = 600) 30 iterations, 2.1 s (dense 7.6 s); 12 s (N = 1200) 30 iterations, 4.5-5 s; a random
-property test against qpOASES on the explicit condensation.
+(N = 600) 30 iterations, 2.1 s (dense 7.6 s); 12 s (N = 1200) 30 iterations, 4.5-5 s (one
+interval per stage); a random property test against qpOASES on the explicit condensation. With
+five command intervals per stage the QP of the 11.55 s paper course at 18 km/h (231 stages)
+takes 27 iterations, 1.7 s, against 4.5 s with one (development machine; per iteration the
+factorisation 15 ms, the stage normal matrices 15 ms, the rows' products 16 ms, the sweeps
+9 ms).
+
+An infeasible QP (the nonlinear bound's second-order correction can shift the rows past what
+the command can meet) shows as a primal residual that stops falling while μ stops falling or
+grows: measured on the 11.5 s course at 18 km/h, the residual stayed at 6e-2 from the fourth
+iteration while μ grew to 5e15 at the iteration limit (80 iterations, 9 s). The iteration
+therefore stops, not converged, when over :data:`STALL_WINDOW` iterations neither the primal
+residual (while above the tolerance) nor μ fell by :data:`STALL_FACTOR`; a converging solve
+lowers μ by more than that every two iterations. At the other end, once the primal residual
+and the gap meet the tolerance, the barrier terms of the active rows reach 1e16 and the dual
+residual has a round-off floor: on the same course it fell to 4e-11, then rose to 4e-8 ... 0.5
+as μ fell to 1e-20 and the solve ran to its 80 iterations (12-14 s) with tolerance 1e-8. It
+stops there too (the dual residual not halved over :data:`STALL_WINDOW` iterations, the rest
+met), and a solve that stops without converging returns its best iterate (the smallest
+largest scaled residual), not its last.
 """
 
 from __future__ import annotations
@@ -45,22 +64,28 @@ __all__ = ["StageQP", "condensed_gradient", "mean_condensed_curvature", "solve_r
 
 #: Iterative-refinement steps of each Newton direction (module notes).
 REFINEMENTS = 1
+#: The centring target's floor, relative to the μ at which the gap meets the tolerance.
+MU_FLOOR = 0.1
+#: Iterations over which a QP without progress is given up as infeasible (module notes).
+STALL_WINDOW = 5
+#: Least decrease of the primal residual or of μ over :data:`STALL_WINDOW` iterations.
+STALL_FACTOR = 0.5
 
 
 @dataclass(frozen=True)
 class StageQP:
-    """The QP of the module notes (one input per stage).
+    """The QP of the module notes (n_u inputs per stage).
 
     Attributes
     ----------
     transition, command_map : numpy.ndarray
-        (N, n_z, n_z) F_j and (N, n_z) G_j.
+        (N, n_z, n_z) F_j and (N, n_z, n_u) G_j.
     hessian, gradient : numpy.ndarray
-        (N, n_z + 1, n_z + 1) H_j and (N, n_z + 1) g_j, in w_j = (z_j, v_j).
+        (N, n_z + n_u, n_z + n_u) H_j and (N, n_z + n_u) g_j, in w_j = (z_j, v_j).
     rows, row_low, row_high : numpy.ndarray
-        (N, n_r, n_z + 1) D_j and (N, n_r) l_j, h_j (finite).
+        (N, n_r, n_z + n_u) D_j and (N, n_r) l_j, h_j (finite).
     v_low, v_high : numpy.ndarray
-        (N,) the bounds on v_j.
+        (N, n_u) the bounds on v_j.
     end_rows, end_target : numpy.ndarray
         (n_e, n_z) E and (n_e,) e.
     """
@@ -76,6 +101,16 @@ class StageQP:
     v_high: np.ndarray
     end_rows: np.ndarray
     end_target: np.ndarray
+
+    @property
+    def inputs(self) -> int:
+        """n_u, inputs per stage."""
+        return self.command_map.shape[2]
+
+    @property
+    def states(self) -> int:
+        """n_z, states per stage."""
+        return self.command_map.shape[1]
 
     @cached_property
     def transposed(self) -> np.ndarray:
@@ -93,9 +128,14 @@ class StageQP:
         return np.ascontiguousarray(self.transition, dtype=float)
 
     @cached_property
+    def contiguous_command_map(self) -> np.ndarray:
+        """(N, n_z, n_u) G_j, C-contiguous (the compiled Riccati sweeps read it)."""
+        return np.ascontiguousarray(self.command_map, dtype=float)
+
+    @cached_property
     def stacked(self) -> np.ndarray:
-        """(N, n_z, n_z + 1) [F_j G_j], the dynamics' map of w_j."""
-        return np.concatenate([self.transition, self.command_map[:, :, None]], axis=2)
+        """(N, n_z, n_z + n_u) [F_j G_j], the dynamics' map of w_j."""
+        return np.ascontiguousarray(np.concatenate([self.transition, self.command_map], axis=2))
 
 
 def _recur(columns: np.ndarray, offsets: np.ndarray, first: np.ndarray) -> np.ndarray:
@@ -107,44 +147,47 @@ def _recur(columns: np.ndarray, offsets: np.ndarray, first: np.ndarray) -> np.nd
 
 
 def _forward(qp: StageQP, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """w_j (N, n_z + 1) and z_N of the commands ``v``."""
-    n, nz = qp.command_map.shape
-    z = _recur(qp.transposed, qp.command_map * v[:, None], np.zeros(nz))
-    return np.concatenate([z[:n], v[:, None]], axis=1), z[n]
+    """w_j (N, n_z + n_u) and z_N of the commands ``v`` (N, n_u)."""
+    n, nz = qp.transition.shape[:2]
+    z = _recur(qp.transposed, np.einsum("jau,ju->ja", qp.command_map, v), np.zeros(nz))
+    return np.concatenate([z[:n], v], axis=1), z[n]
 
 
 def _adjoint(qp: StageQP, h: np.ndarray, h_end: np.ndarray) -> np.ndarray:
-    """The condensed gradient Tᵀ h of stage vectors h (N, n_z + 1) and h_end on z_N."""
-    nz = qp.command_map.shape[1]
+    """The condensed gradient Tᵀ h (N, n_u) of stage vectors h (N, n_z + n_u) and h_end on z_N."""
+    nz = qp.states
     # costate_j = h_{j,z} + F_jᵀ costate_{j+1}, swept from costate_N = h_end
     costate = _recur(qp.reversed, h[::-1, :nz], h_end)[::-1]
-    return h[:, nz] + np.einsum("jk,jk->j", qp.command_map, costate[1:])
+    return h[:, nz:] + np.einsum("jau,ja->ju", qp.command_map, costate[1:])
 
 
 def condensed_gradient(qp: StageQP) -> np.ndarray:
-    """(N,) the gradient of the cost in v at v = 0 (the condensed form's q)."""
-    return _adjoint(qp, qp.gradient, np.zeros(qp.command_map.shape[1]))
+    """(N n_u,) the gradient of the cost in the commands at v = 0 (the condensed form's q),
+    stage by stage."""
+    return _adjoint(qp, qp.gradient, np.zeros(qp.states)).ravel()
 
 
 def mean_condensed_curvature(qp: StageQP) -> float:
     """The mean diagonal entry of the condensed Hessian Tᵀ H T, exactly: its trace is
     Σ_j tr(H_j Cov w_j) for unit white v, with Cov z_{j+1} = F_j Cov z_j F_jᵀ + G_j G_jᵀ (the
     scale of a Levenberg-Marquardt damping term, as the dense form's mean of diag P)."""
-    n, nz = qp.command_map.shape
+    n, nz = qp.transition.shape[:2]
     covariance, trace = np.zeros((nz, nz)), 0.0
     for j in range(n):
-        trace += float(np.sum(qp.hessian[j, :nz, :nz] * covariance)) + qp.hessian[j, nz, nz]
+        trace += float(np.sum(qp.hessian[j, :nz, :nz] * covariance))
+        trace += float(np.trace(qp.hessian[j, nz:, nz:]))
         f, g = qp.transition[j], qp.command_map[j]
-        covariance = f @ covariance @ f.T + np.outer(g, g)
-    return trace / n
+        covariance = f @ covariance @ f.T + g @ g.T
+    return trace / (n * qp.inputs)
 
 
 @dataclass(frozen=True)
 class _Factor:
-    """The Riccati recursion of one set of stage Hessians: S̄_j (N, n_z) and R̄_j (N,)."""
+    """The Riccati recursion of one set of stage Hessians: S̄_j (N, n_u, n_z) and the lower
+    Cholesky factors of R̄_j (N, n_u, n_u)."""
 
     s_bar: np.ndarray
-    r_bar: np.ndarray
+    r_low: np.ndarray
 
 
 def _factor(qp: StageQP, hessian: np.ndarray) -> _Factor:
@@ -152,29 +195,32 @@ def _factor(qp: StageQP, hessian: np.ndarray) -> _Factor:
 
     The cost-to-go P_j is carried as a factor L_j (P_j = L_j L_jᵀ, the square-root form), so
     that every M_j = H̃_j + [F_j G_j]ᵀ P_{j+1} [F_j G_j] is a sum of Gram matrices: R̄_j, its
-    command entry, is positive whatever the round-off, and P_j stays semi-definite; the next
+    command block, is positive definite whatever the round-off, and P_j stays semi-definite; the next
     factor is the Cholesky factor of M_j's Schur complement, or, where round-off made a pivot
     negative (rows of a near-active limit nearly along the command, whose barrier term cancels
     in the Schur complement), its eigenvalues clipped at zero
     (:func:`~loader_model.bound.riccati_kernels.riccati_factor`)."""
-    s_bar, r_bar, failed = riccati_factor(qp.stacked, np.ascontiguousarray(hessian))
-    if failed >= 0 or not (np.all(np.isfinite(s_bar)) and np.all(np.isfinite(r_bar))):
-        stage = failed if failed >= 0 else int(np.argmin(np.isfinite(r_bar)))
-        raise np.linalg.LinAlgError(f"stage {stage}: the Riccati recursion's R̄ is {r_bar[stage]:g}")
-    return _Factor(s_bar, r_bar)
+    s_bar, r_low, failed = riccati_factor(qp.stacked, np.ascontiguousarray(hessian))
+    finite = np.all(np.isfinite(r_low), axis=(1, 2)) & np.all(np.isfinite(s_bar), axis=(1, 2))
+    if failed >= 0 or not np.all(finite):
+        stage = failed if failed >= 0 else int(np.argmin(finite))
+        raise np.linalg.LinAlgError(
+            f"stage {stage}: the Riccati recursion's R̄ is not positive definite (or not finite)"
+        )
+    return _Factor(s_bar, r_low)
 
 
 def _solve(
     qp: StageQP, factor: _Factor, linear: np.ndarray, end: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Minimise ½ Σ wᵀ H̃ w + Σ linear_jᵀ w_j + endᵀ z_N for each column: (N, n_z + 1, c), (n_z, c).
+    """Minimise ½ Σ wᵀ H̃ w + Σ linear_jᵀ w_j + endᵀ z_N for each column: (N, n_z + n_u, c),
+    (n_z, c).
 
-    With the value's linear term p_j and the feedforward k_j = −(r_j + G_jᵀ p_{j+1}) / R̄_j,
-    p_j = q_j − S̄_jᵀ r_j / R̄_j + (F_j − G_j S̄_j / R̄_j)ᵀ p_{j+1}, and forward
-    z_{j+1} = (F_j − G_j S̄_j / R̄_j) z_j + G_j k_j, v_j = k_j − S̄_j z_j / R̄_j
-    (:func:`~loader_model.bound.riccati_kernels.riccati_solve`)."""
+    With the value's linear term p_j and the feedforward k_j = −R̄_j⁻¹ (r_j + G_jᵀ p_{j+1}),
+    p_j = q_j + F_jᵀ p_{j+1} + S̄_jᵀ k_j, and forward v_j = k_j − R̄_j⁻¹ S̄_j z_j,
+    z_{j+1} = F_j z_j + G_j v_j (:func:`~loader_model.bound.riccati_kernels.riccati_solve`)."""
     return riccati_solve(
-        qp.contiguous_transition, qp.command_map, factor.s_bar, factor.r_bar,
+        qp.contiguous_transition, qp.contiguous_command_map, factor.s_bar, factor.r_low,
         np.ascontiguousarray(linear, dtype=float), np.ascontiguousarray(end, dtype=float),
     )  # fmt: skip
 
@@ -195,13 +241,15 @@ def solve_riccati_qp(
     Returns
     -------
     tuple
-        (QPResult with u = v and ``row_multipliers`` (N, n_r), the stage variables w (N, n_z + 1)).
+        (QPResult with u = v stage by stage (N n_u,) and ``row_multipliers`` (N, n_r), the stage
+        variables w (N, n_z + n_u)).
     """
-    n, nz = qp.command_map.shape
+    n, nz, n_in = qp.command_map.shape
+    inputs = np.arange(nz, nz + n_in)
     rows = qp.rows
     rows_t = np.ascontiguousarray(rows.transpose(0, 2, 1))
     n_e = qp.end_target.size
-    zero_columns = np.zeros((n, nz + 1, n_e))
+    zero_columns = np.zeros((n, nz + n_in, n_e))
 
     def row_values(w: np.ndarray) -> np.ndarray:
         return (rows @ w[:, :, None])[:, :, 0]
@@ -209,13 +257,13 @@ def solve_riccati_qp(
     def row_adjoint(values: np.ndarray) -> np.ndarray:
         return (rows_t @ values[:, :, None])[:, :, 0]
 
-    v = np.clip(np.zeros(n), qp.v_low, qp.v_high)
+    v = np.clip(np.zeros((n, n_in)), qp.v_low, qp.v_high)
     w, z_end = _forward(qp, v)
     bounds = (qp.row_high, -qp.row_low, qp.v_high, -qp.v_low)
 
     def constraint(w: np.ndarray) -> tuple[np.ndarray, ...]:
         values = row_values(w)
-        return values, -values, w[:, nz], -w[:, nz]
+        return values, -values, w[:, nz:], -w[:, nz:]
 
     slack = [np.maximum(b - c, 1.0) for b, c in zip(bounds, constraint(w), strict=True)]
     dual = [np.ones_like(s) for s in slack]
@@ -224,11 +272,13 @@ def solve_riccati_qp(
     scale = max(1.0, float(np.max(np.abs(condensed_gradient(qp)))), mean_condensed_curvature(qp))
     count = sum(s.size for s in slack)
     converged, iteration = False, 0
+    history: list[tuple[float, float, float]] = []
+    best: tuple = (np.inf,)
 
     def stage_terms(values: list[np.ndarray]) -> np.ndarray:
         """Cᵀ values in stage form."""
         out = row_adjoint(values[0] - values[1])
-        out[:, nz] += values[2] - values[3]
+        out[:, nz:] += values[2] - values[3]
         return out
 
     for _ in range(max_iterations):
@@ -249,9 +299,20 @@ def solve_riccati_qp(
         if primal < tolerance and dual_res < tolerance and gap < tolerance * max(1.0, objective):
             converged = True
             break
+        error = max(primal, dual_res, gap / max(1.0, objective))
+        if error < best[0]:
+            best = (error, w, z_end, y, slack, dual)
+        history.append((primal, mu, dual_res))
+        if len(history) > STALL_WINDOW:
+            primal_before, mu_before, dual_before = history[-1 - STALL_WINDOW]
+            if primal >= tolerance:
+                if primal > STALL_FACTOR * primal_before and mu > STALL_FACTOR * mu_before:
+                    break  # no progress: infeasible (module notes)
+            elif gap < tolerance * max(1.0, objective) and dual_res > STALL_FACTOR * dual_before:
+                break  # the dual residual's round-off floor (module notes)
         ratio = [d / s for d, s in zip(dual, slack, strict=True)]
         normal = qp.hessian + rows_t @ (rows * (ratio[0] + ratio[1])[:, :, None])
-        normal[:, nz, nz] += ratio[2] + ratio[3]
+        normal[:, inputs, inputs] += ratio[2] + ratio[3]
         factor = _factor(qp, normal)
         # the end condition's columns: the responses to a unit multiplier on each end row
         end_w, end_z = _solve(qp, factor, zero_columns, qp.end_rows.T)
@@ -270,13 +331,13 @@ def solve_riccati_qp(
             """The LQ step (dw, dz_N, ν) of linear terms ``linear`` with E dz_N = end_target,
             refined against the exact stage Hessians (the factor is of a semi-definite
             repair where round-off made the recursion indefinite: :func:`_factor`)."""
-            step = np.zeros((n, nz + 1)), np.zeros(nz), np.zeros(n_e)
+            step = np.zeros((n, nz + n_in)), np.zeros(nz), np.zeros(n_e)
             residual_linear, residual_end = linear, end_target
             for refinement in range(1 + REFINEMENTS):
                 if refinement:  # the condensed residual, put on the commands
                     gradient = (normal @ step[0][:, :, None])[:, :, 0] + linear
-                    residual_linear = np.zeros((n, nz + 1))
-                    residual_linear[:, nz] = _adjoint(qp, gradient, qp.end_rows.T @ step[2])
+                    residual_linear = np.zeros((n, nz + n_in))
+                    residual_linear[:, nz:] = _adjoint(qp, gradient, qp.end_rows.T @ step[2])
                     residual_end = end_target - qp.end_rows @ step[1]
                 base_w, base_z = _solve(qp, factor, residual_linear[:, :, None], np.zeros((nz, 1)))
                 nu = np.linalg.solve(schur, residual_end - qp.end_rows @ base_z[:, 0])
@@ -323,7 +384,9 @@ def solve_riccati_qp(
             / count
         )
         sigma = (mu_affine / mu) ** 3
-        target = [sigma * mu - a * b for a, b in zip(ds, dd, strict=True)]
+        # μ no lower than what the gap test needs (module notes)
+        centre = max(sigma * mu, MU_FLOOR * tolerance * max(1.0, objective) / count)
+        target = [centre - a * b for a, b in zip(ds, dd, strict=True)]
         dw, dz_end, nu, ds, dd = direction(target)
         alpha = 0.99 * min(
             min(_step(s, x) for s, x in zip(slack, ds, strict=True)),
@@ -332,10 +395,12 @@ def solve_riccati_qp(
         w, z_end, y = w + alpha * dw, z_end + alpha * dz_end, y + alpha * (nu - y)
         slack = [s + alpha * x for s, x in zip(slack, ds, strict=True)]
         dual = [d + alpha * x for d, x in zip(dual, dd, strict=True)]
+    if not converged and len(best) > 1:
+        w, z_end, y, slack, dual = best[1:]
     h = (qp.hessian @ w[:, :, None])[:, :, 0] + qp.gradient + stage_terms(dual)
     r_in = [c + s - b for c, s, b in zip(constraint(w), slack, bounds, strict=True)]
     result = QPResult(
-        u=w[:, nz].copy(),
+        u=w[:, nz:].ravel(),
         iterations=iteration,
         primal_residual=max(float(np.max(np.abs(qp.end_rows @ z_end - qp.end_target))),
                             *(float(np.max(np.abs(r))) for r in r_in)),
