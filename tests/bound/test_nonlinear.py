@@ -67,18 +67,25 @@ def test_gauss_newton_gradient_matches_finite_differences(plant, road):
 
 def test_flow_sensitivities_stay_bounded_over_the_paper_course(plant):
     """Along the static command over the first 6 s of the paper course (9 km/h, two 40 mm
-    boards) no period's sensitivity A_k has an eigenvalue beyond 1.5 in modulus (measured 1.45
-    over 12 s) and their product grows by less than 10 times in norm after the first second
-    (measured: it shrinks). The derivative of the discrete step instead has eigenvalues up to
-    2.6e4 where a substep straddles the check valve's opening band, and its product grew by
-    1e12 at each board (12 s: to 1e51; the single-shooting sensitivities overflowed)."""
+    boards) the product of the periods' sensitivities A_k grows by less than 10 times in norm
+    after the first second (measured: it shrinks), no A_k has an eigenvalue beyond 100 in
+    modulus and at most one period in a thousand one beyond 1.5. The derivative of the discrete
+    step instead has eigenvalues up to 2.6e4 where a substep straddles the check valve's
+    opening band, and its product grew by 1e12 at each board (12 s: to 1e51; the
+    single-shooting sensitivities overflowed). Whether a substep lands in that 10 kPa band
+    depends on the trajectory's last digits: on one machine every eigenvalue stayed below 1.45
+    (over 12 s), on another one period (2.904 s, p_A 31 kPa below the charge pressure) had
+    −3.57 in the p_A-p_B mode, while the product still shrank; so the isolated period is
+    allowed and the product, what single shooting needs, is held."""
     from loader_model.simulation import paper_course
     from loader_model.simulation.simulator import course_input
 
     problem = bound_problem(plant, course_input(paper_course(9.0), plant), duration_s=6.0)
     trajectory = rollout(problem, np.full(problem.intervals, plant.u0))
     a = linearise(problem, trajectory).a
-    assert np.max(np.abs(np.linalg.eigvals(a))) <= 1.5
+    radius = np.max(np.abs(np.linalg.eigvals(a)), axis=1)
+    assert np.max(radius) <= 100.0
+    assert np.count_nonzero(radius > 1.5) <= 1e-3 * radius.size
     product, log_norm, norms = np.eye(a.shape[1]), 0.0, []
     for k, a_k in enumerate(a):
         product = a_k @ product
