@@ -7,8 +7,15 @@ the road table (w, ẇ) of the skid-steer (tandem cam and rigid disc) and of the
 loader (tandem cam) on the 9 km/h paper course around the first board (rows 1700-3400, where
 the front and the rear axle meet it), and 4 s of the baseline run of each machine (every 4th
 row of the tyre loads, seat acceleration, piston pressure and pitch). At the change the
-tables and runs were equal bit for bit; the tables are compared exactly (NumPy only), the runs
-to 1e-9 of each signal's range (a margin for another C compiler in the JIT).
+tables and runs were equal bit for bit on the machine that stored them. On another CPU they
+are not: NumPy picks its SIMD kernels of sin, cos and sqrt by the CPU's extensions, so on an
+AMD EPYC without AVX-512 the tandem-cam tables differed by up to 6.5e-16 of their range (the
+rigid disc's not at all), and the contact events of the 4 s runs amplified such differences to
+3.2e-5 of a signal's range (the seat's vertical acceleration; tyre loads 2e-5, pitch 4.5e-6).
+So the tables are compared to 1e-13 of their range and the runs to 1e-3 of each signal's
+range: far above round-off, far below what a change of the road input gives (the skid-steer's
+road 1 % higher moves these signals by 1.5 % (pitch) to 7.5 % (front tyre load) of their
+range, measured).
 """
 
 from __future__ import annotations
@@ -67,8 +74,10 @@ def test_two_axle_road_tables_equal_the_stored_ones(stored, machine: str, envelo
     road = course_input(paper_course(9.0), _plant(machine), envelope=envelope)
     assert road.axle_names == ("A", "B") and road.road_m.shape[1] == 4
     assert np.ptp(stored[f"{machine}/{envelope}/road"][:, 1]) > 0.03  # the board is in the rows
-    np.testing.assert_array_equal(road.road_m[ROWS], stored[f"{machine}/{envelope}/road"])
-    np.testing.assert_array_equal(road.road_rate_m_s[ROWS], stored[f"{machine}/{envelope}/rate"])
+    for name, actual in (("road", road.road_m[ROWS]), ("rate", road.road_rate_m_s[ROWS])):
+        expected = stored[f"{machine}/{envelope}/{name}"]
+        assert actual.shape == expected.shape
+        assert np.max(np.abs(actual - expected)) <= 1e-13 * np.ptp(expected), name
 
 
 def test_two_axle_runs_equal_the_stored_ones(stored) -> None:
@@ -85,7 +94,7 @@ def test_two_axle_runs_equal_the_stored_ones(stored) -> None:
             assert actual.shape == expected.shape
             scale = np.ptp(expected)
             assert scale > 0.0, (machine, signal)
-            assert np.abs(actual - expected).max() <= 1e-9 * scale, (machine, signal)
+            assert np.abs(actual - expected).max() <= 1e-3 * scale, (machine, signal)
 
 
 if __name__ == "__main__":
