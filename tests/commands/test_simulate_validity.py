@@ -9,6 +9,7 @@ bound, print no evaluation, and write the time series up to the stop.
 
 from __future__ import annotations
 
+import dataclasses
 import re
 
 import numpy as np
@@ -52,27 +53,39 @@ def test_a_machine_that_tips_over_stops_there_with_its_time_series(
     assert (tmp_path / "h.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
-def test_a_failed_integration_step_is_named_not_the_iso_input_check(tmp_path, capsys) -> None:
-    """Class E at 40 km/h, full bucket, seed 3, baseline (closed load-holding valves), rigid-disc
-    tyres, one ROS2 step per period: the seat acceleration passes 50 g at 1.306 s in one failed 1
-    ms period (2 ROS2 substeps avoid it: at most 18.7 m/s² over the 20 s; the default is 4).
-    Before the circuit states (issue 21) the case was seed 1, at 13.287 s; on the new baseline
-    that run passes (which runs fail at one substep turns on rounding-level differences of the
-    plant)."""
+def test_a_seat_acceleration_stop_is_named_not_the_iso_input_check(
+    tmp_path, capsys, monkeypatch
+) -> None:
+    """The stop on the seat acceleration bound (the bound a failed fixed-step integration step
+    crosses: class E at 40 km/h, full bucket, baseline, rigid discs, one ROS2 step per period
+    once passed 50 g in one 1 ms period, at 13.287 s with seed 1 and at 1.306 s with seed 3)
+    names the time, the state and the bound, prints no ISO 2631 evaluation and writes the run
+    up to it. Which runs fail at one substep turns on the last digits of the plant's arithmetic:
+    on an AMD EPYC without AVX-512 the seed-3 run passes (its seat peaks at 64 m/s²), so the
+    test lowers the bound to 30 m/s² on that run. The seat then rises through it in 2 m/s² per
+    millisecond at the first bump: the stop at 0.837 s (measured), 19 m/s² the largest value
+    before 0.83 s and 35 m/s² the peak there."""
+    from loader_model.simulation import simulator
+    from loader_model.simulation.validity import resolve_bounds
+
+    def lowered(validity, params, *, machine):
+        bounds = resolve_bounds(validity, params, machine=machine)
+        return dataclasses.replace(bounds, seat_acceleration_m_s2=30.0)
+
+    monkeypatch.setattr(simulator, "resolve_bounds", lowered)
     output = tmp_path / "x.npz"
     argv = ["simulate", "--speed", "40", "--course", "iso8608:E", "--load", "full",
             "--duration", "20", "--seed", "3", "--envelope", "rigid", "--substeps", "1",
             "--output", str(output)]  # fmt: skip
     stop_s, error, _ = _stop(argv, capsys)
-    assert "seat acceleration f_S" in error and "beyond the bound 490.3 m/s²" in error
-    assert 1.2 < stop_s < 1.4
+    assert "seat acceleration f_S" in error and "beyond the bound 30 m/s²" in error
+    assert 0.83 < stop_s < 0.85
     with np.load(output) as data:
         assert abs(data["time"][-1] - stop_s) <= 5e-4
-        assert (
-            abs(data["f_Sx"][-1] - data["f_Sx"][0])
-            > 490.0
-            > np.max(np.abs(data["f_Sx"][:-1] - data["f_Sx"][0]))
+        seat = np.maximum(
+            np.abs(data["f_Sx"] - data["f_Sx"][0]), np.abs(data["f_Sy"] - data["f_Sy"][0])
         )
+        assert seat[-1] > 30.0 > np.max(seat[:-1])
 
 
 def test_without_output_the_error_says_no_series_was_written(capsys) -> None:
