@@ -37,11 +37,12 @@ import casadi as ca
 import numpy as np
 
 from loader_model.bound.problem import PATH_SIGNALS, BoundProblem
+from loader_model.machines import DEFAULT_MACHINE
 from loader_model.plant.plant import OUTPUT_NAMES, STATE_NAMES, plant_function
 from loader_model.simulation.compiled import CompilationError, cached_function, compiled_function
 from loader_model.simulation.controllers import CONTROLLER_PERIOD_S, hold_command_controller
 from loader_model.simulation.result import seat_signal_names
-from loader_model.simulation.simulator import DEFAULT_SUBSTEPS
+from loader_model.simulation.simulator import DEFAULT_SUBSTEPS, STEP_ERROR_LIMIT, refine_period
 from loader_model.simulation.stepper import compile_period, ros2_period
 
 __all__ = [
@@ -111,7 +112,7 @@ def linearised_period() -> ca.Function:
     w0, w1 = ca.SX.sym("w0", nw), ca.SX.sym("w1", nw)
     params = ca.SX.sym("params", plant.size1_in(3))
     y = plant(x, u, w0, params)[1]
-    x_next, a, b = ros2_period(
+    x_next, a, b, _ = ros2_period(
         plant, x, u, w0, w1, params, CONTROLLER_PERIOD_S, DEFAULT_SUBSTEPS, sensitivities=True
     )
     return ca.Function(
@@ -168,20 +169,32 @@ def rollout(problem: BoundProblem, command: np.ndarray) -> Trajectory:
     params = np.ascontiguousarray(np.tile(plant.params[None, :], (_CHUNK, 1)))
     settings, zeros = np.empty(_CHUNK), np.zeros((_CHUNK, ny))
     block, y_block, u_block = np.empty((_CHUNK, nx + 1)), np.empty((_CHUNK, ny)), np.empty(_CHUNK)
+    error_block = np.empty(_CHUNK)
     buffer, evaluate = _rolled(_CHUNK).buffer()
     for index, array in enumerate((carry, w0, w1, params, settings, zeros, zeros)):
         buffer.set_arg(index, memoryview(array))
-    for index, array in enumerate((block, y_block, u_block)):
+    for index, array in enumerate((block, y_block, u_block, error_block)):
         buffer.set_res(index, memoryview(array))
-    for start in range(0, count, _CHUNK):
+    start = 0
+    while start < count:
         size = min(_CHUNK, count - start)
         rows = np.arange(start, start + _CHUNK).clip(max=count - 1)
         w0[:], w1[:], settings[:] = exo[rows], exo[rows + 1], u_k[rows]
         evaluate()
+        failed = np.flatnonzero(error_block[:size] > STEP_ERROR_LIMIT)
+        if failed.size:  # as the simulator: the failed period integrated again finer
+            size, index = int(failed[0]) + 1, start + int(failed[0])
+            before = carry if failed[0] == 0 else block[failed[0] - 1]
+            block[failed[0]] = refine_period(
+                hold_command_controller(), CONTROLLER_PERIOD_S, DEFAULT_SUBSTEPS,
+                DEFAULT_MACHINE, before, exo[index], exo[index + 1], plant.params,
+                u_k[index : index + 1], zeros[0], zeros[0],
+            )  # fmt: skip
         states[start] = carry[:nx]
         states[start + 1 : start + size] = block[: size - 1, :nx]
         outputs[start : start + size] = y_block[:size]
         carry[:] = block[size - 1]
+        start += size
     states[count] = carry[:nx]
     outputs[count] = np.asarray(
         plant_function()(carry[:nx], carry[nx], exo[count], plant.params)[1]

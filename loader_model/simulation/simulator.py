@@ -6,11 +6,15 @@ controller arguments it builds one) from the plant's static equilibrium
 (:func:`~loader_model.plant.equilibrium.static_state`), evaluates the controller every period h
 (zero-order hold on its command) and integrates the plant over each period with the compiled
 ROS2 scheme of :mod:`~loader_model.simulation.stepper`, rolled over chunks of periods by
-``mapaccum``. After each chunk it checks the rows against the model's range of validity
-(:mod:`~loader_model.simulation.validity`: tip-over pitch, boom angle beyond the end stops, time in
-the air, seat acceleration) and stops at the first violation with :class:`ModelValidityError`,
-which carries the time series up to it; then it checks that everything is finite and raises
-:class:`SimulationError` naming the time and the state if not: no NaN leaves the simulator.
+``mapaccum``. A period whose substeps' error estimate passes :data:`STEP_ERROR_LIMIT` (a failed
+linearly implicit step at the tyres' stick-slip switch: the stepper's notes) is integrated again
+with :data:`REFINEMENT` times the substeps and the chunk resumes after it; the result's
+metadata lists those periods (``refined_periods``). After each chunk it checks the rows against
+the model's range of validity (:mod:`~loader_model.simulation.validity`: tip-over pitch, boom
+angle beyond the end stops, time in the air, seat acceleration) and stops at the first
+violation with :class:`ModelValidityError`, which carries the time series up to it; then it
+checks that everything is finite and raises :class:`SimulationError` naming the time and the
+state if not: no NaN leaves the simulator.
 Events (cavitation, tyre lift-off, end stops, pump saturation) are recorded in the result
 (:mod:`~loader_model.simulation.events`). Accuracy against a CVODES reference at rtol 1e-10:
 ``tests/simulation/test_simulator.py``.
@@ -44,10 +48,13 @@ from loader_model.simulation.validity_check import ModelValidityError, Simulatio
 __all__ = [
     "DEFAULT_CHUNK_PERIODS",
     "DEFAULT_SUBSTEPS",
+    "REFINEMENT",
+    "STEP_ERROR_LIMIT",
     "ModelValidityError",
     "SimulationError",
     "course_input",
     "exogenous_table",
+    "refine_period",
     "simulate",
 ]
 
@@ -61,6 +68,14 @@ DEFAULT_CHUNK_PERIODS = 500
 #: with 2, +0.24 % with 4, 0.00 % with 8; rigid discs −4.6 %, −5.3 %, 0.00 %, 0.00 %). Four cost
 #: 3.0x the integration time of one (38 ms -> 114 ms for the 15 s course, warm, this machine).
 DEFAULT_SUBSTEPS = 4
+#: Largest error estimate of a period's substeps, in units of the states' scales
+#: (:func:`~loader_model.simulation.stepper.step_error_scales`), above which the period is
+#: integrated again with :data:`REFINEMENT` times the substeps (module notes of
+#: :mod:`~loader_model.simulation.stepper`: failed steps read 150 to 11 600, every other period
+#: of the 16 paper-course runs below 3 and up to 18 right after a failed step).
+STEP_ERROR_LIMIT = 30.0
+#: Substeps of a refined period, as a multiple of the run's.
+REFINEMENT = 4
 #: Outputs that are states of the same name and value; they appear once in the result.
 _STATE_OUTPUTS = frozenset(OUTPUT_NAMES) & frozenset(STATE_NAMES)
 
@@ -245,7 +260,8 @@ def simulate(
     y_errors, y_steps = _sensor_errors(sensors, count, output_names)
     bounds = resolve_bounds(validity, params, machine=scenario.plant.machine)
     monitor = validity_check.ValidityMonitor(bounds, period_s, layout)
-    period, backend = compile_period(controller, period_s, substeps, jit, scenario.plant.machine)
+    machine = scenario.plant.machine
+    period, backend = compile_period(controller, period_s, substeps, jit, machine)
     chunk = min(int(chunk_periods), count)
     roll = _rolled(period, chunk)
     ncarry = len(state_names) + nz + 1
@@ -255,16 +271,19 @@ def simulate(
     e_block = np.zeros((chunk, len(output_names)))
     block = np.empty((chunk, ncarry))
     y_block, u_block = np.empty((chunk, len(output_names))), np.empty(chunk)
+    error_block = np.empty(chunk)
     buffer, trigger = roll.buffer()
     for index, array in enumerate((carry, w0, w1, params, settings_vector, e_block, y_steps)):
         buffer.set_arg(index, memoryview(array))
-    for index, array in enumerate((block, y_block, u_block)):
+    for index, array in enumerate((block, y_block, u_block, error_block)):
         buffer.set_res(index, memoryview(array))
     carries = np.empty((count, ncarry))
     outputs = np.empty((count, len(output_names)))
     commands = np.empty(count)
+    refined: list[int] = []
     start_wall = time.perf_counter()
-    for start in range(0, count, chunk):
+    start = 0
+    while start < count:
         stop = min(start + chunk, count)
         rows = np.arange(start, start + chunk).clip(max=count - 1)
         w0[:] = exogenous[rows]
@@ -272,6 +291,16 @@ def simulate(
         e_block[:] = y_errors[rows]
         trigger()
         size = stop - start
+        failed = np.flatnonzero(error_block[:size] > STEP_ERROR_LIMIT)
+        if failed.size:  # keep the rows up to the failed period, integrate it again finer
+            size, index = int(failed[0]) + 1, start + int(failed[0])
+            before = carry if failed[0] == 0 else block[failed[0] - 1]
+            block[failed[0]] = refine_period(
+                controller, period_s, substeps, machine, before, exogenous[index],
+                exogenous[index + 1], params, settings_vector, y_errors[index], y_steps,
+            )  # fmt: skip
+            stop = start + size
+            refined.append(index)
         carries[start] = carry
         carries[start + 1 : stop] = block[: size - 1]
         outputs[start:stop] = y_block[:size]
@@ -284,6 +313,7 @@ def simulate(
             block[:size].T, y_block[:size].T, start, period_s, state_names
         )
         carry[:] = block[size - 1]
+        start = stop
     wall_s = time.perf_counter() - start_wall
     states, y_all, u_all = carries[:count].T, outputs[:count].T, commands[:count]
     columns_out: dict[str, np.ndarray] = dict(
@@ -320,6 +350,7 @@ def simulate(
         "sensors": None if sensors is None else dataclasses.asdict(sensors),
         "wall_time_s": wall_s,
         "real_time_factor": count * period_s / wall_s,
+        "refined_periods": [round(k * period_s, 6) for k in refined],
         "validity": dataclasses.asdict(monitor.bounds),
         "machine": scenario.plant.machine,
     }
@@ -361,9 +392,26 @@ def _rolled(period: ca.Function, chunk: int) -> ca.Function:
             [carry, w0, w1, params, settings, y_error, y_step],
             outputs,
             ["carry", "w0", "w1", "params", "settings", "y_error", "y_step"],
-            ["carry_next", "y", "u"],
+            ["carry_next", "y", "u", "step_error"],
         )
     return _ROLLED[key]
+
+
+def refine_period(
+    controller: ca.Function,
+    period_s: float,
+    substeps: int,
+    machine: str,
+    carry: np.ndarray,
+    *inputs: np.ndarray,
+) -> np.ndarray:
+    """The carry after one period integrated with :data:`REFINEMENT` times ``substeps`` ROS2
+    steps (a period whose error estimate passed :data:`STEP_ERROR_LIMIT`; module notes), in
+    CasADi's virtual machine (one period: no compilation). ``inputs`` are the period's other
+    arguments (w0, w1, params, settings, y_error, y_step); the controller's part is the same
+    as the coarse period's, so z and u are unchanged."""
+    fine = compile_period(controller, period_s, REFINEMENT * substeps, False, machine)[0]
+    return np.asarray(fine(carry, *inputs)[0], dtype=float).ravel()
 
 
 def _sensor_errors(

@@ -17,6 +17,16 @@ to the identity in the mechanical rows; a symbolic QR divides by columns that ar
 at rest and gave NaN). The road input enters as the table samples at the period's ends and is
 interpolated linearly inside it (:mod:`~loader_model.simulation.travel`).
 
+Each substep also gives the embedded first-order solution x_n + h k_1 (linearly implicit Euler)
+and so the error estimate ½ h (k_1 + k_2); the period reports its largest entry over the
+substeps in units of :func:`step_error_scales` (per state, by its unit). Where a substep
+straddles the tyres' stick-slip switch the linearly implicit step can fail: on an AMD EPYC the
+rear tyre's anchor ξ_B jumped by 2 cm in one period of the passive run (9 km/h, full bucket,
+4.705 s), which put 461 J into the energy balance and, in the baseline's run over the nominal
+boards, 600 m/s² onto the seat; those periods read 150 to 11 600 where every other period of
+the 16 paper-course runs stays below 3 (up to 18 right after a failed step). The simulator
+integrates such a period again with finer substeps (:mod:`~loader_model.simulation.simulator`).
+
 One period (:func:`period_function`): y_k = h(x_k, w_k), (z_{k+1}, u_k) = controller(z_k, ỹ_k)
 with ỹ_k the sensors' reading of y_k (offset, noise, quantisation),
 then ``substeps`` ROS2 steps over the period with u_k held. The carry (x, z, u) rolls over many
@@ -30,16 +40,44 @@ import math
 from collections.abc import Callable
 
 import casadi as ca
+import numpy as np
 
 from loader_model.control.sensors import quantise
 from loader_model.machines import DEFAULT_MACHINE
 from loader_model.plant.layout import plant_layout
 from loader_model.plant.plant import plant_function
 from loader_model.simulation.compiled import CompilationError, compiled_function
+from loader_model.simulation.result import column_unit
 
-__all__ = ["compile_period", "lu_solver", "period_function", "ros2_period"]
+__all__ = [
+    "ERROR_SCALE_BY_UNIT",
+    "compile_period",
+    "lu_solver",
+    "period_function",
+    "ros2_period",
+    "step_error_scales",
+]
 
 _GAMMA = 1.0 + 1.0 / math.sqrt(2.0)
+
+#: Scale of one substep's error estimate per state unit (module notes): a tenth of a millimetre
+#: or milliradian, a millimetre per second, a bar, a tenth of a cm³. Units not listed: 1e-3.
+ERROR_SCALE_BY_UNIT: dict[str, float] = {
+    "m": 1e-4,
+    "rad": 1e-4,
+    "m/s": 1e-3,
+    "rad/s": 1e-3,
+    "Pa": 1e5,
+    "m^3": 1e-7,
+    "m^3/rev": 1e-7,
+    "m^3/(rev*s)": 1e-5,
+}
+
+
+def step_error_scales(machine: str = DEFAULT_MACHINE) -> np.ndarray:
+    """The scale of each state's substep error estimate, by its unit (:data:`ERROR_SCALE_BY_UNIT`)."""
+    names = plant_layout(machine).state_names
+    return np.array([ERROR_SCALE_BY_UNIT.get(column_unit(name), 1e-3) for name in names])
 
 
 def lu_solver(matrix: ca.SX) -> Callable[[ca.SX], ca.SX]:
@@ -98,12 +136,14 @@ def period_function(
     Returns
     -------
     casadi.Function
-        ``period(carry, w0, w1, params, settings, y_error, y_step) -> (carry_next, y, u)`` with
-        carry = (x, z, u_previous), w0, w1 the exogenous input (road, road rate, disturbance;
-        :data:`~loader_model.plant.plant.EXOGENOUS_NAMES`) at the period's start and end, y the
-        plant's outputs at its start and u the command held over it. The controller reads
-        ``quantise(y + y_error, y_step)`` (:func:`~loader_model.control.sensors.quantise`):
-        the sensors' offset and noise of this period and their converter steps (0: exact).
+        ``period(carry, w0, w1, params, settings, y_error, y_step) -> (carry_next, y, u,
+        step_error)`` with carry = (x, z, u_previous), w0, w1 the exogenous input (road, road
+        rate, disturbance; :data:`~loader_model.plant.plant.EXOGENOUS_NAMES`) at the period's
+        start and end, y the plant's outputs at its start, u the command held over it and
+        step_error the largest substep error estimate in units of :func:`step_error_scales`.
+        The controller reads ``quantise(y + y_error, y_step)``
+        (:func:`~loader_model.control.sensors.quantise`): the sensors' offset and noise of this
+        period and their converter steps (0: exact).
     """
     layout = plant_layout(machine)
     plant = plant_function(machine)
@@ -119,16 +159,19 @@ def period_function(
     y_step = ca.SX.sym("y_step", n_y)
     _, y = plant(x, u_previous, w0, params)  # y does not depend on u (checked in the tests)
     z_next, u = controller(z, quantise(y + y_error, y_step), settings)
-    state = ros2_period(plant, x, u, w0, w1, params, period_s, substeps)[0]
-    outputs = ca.cse(ca.vertcat(state, z_next, u, y, u))
+    scales = step_error_scales(machine)
+    state, _, _, error = ros2_period(
+        plant, x, u, w0, w1, params, period_s, substeps, error_scales=scales
+    )
+    outputs = ca.cse(ca.vertcat(state, z_next, u, y, u, error))
     carry_next = outputs[: nx + nz + 1]
     y_out = outputs[nx + nz + 1 : nx + nz + 1 + n_y]
     return ca.Function(
         "closed_loop_period",
         [carry, w0, w1, params, settings, y_error, y_step],
-        [carry_next, y_out, outputs[-1]],
+        [carry_next, y_out, outputs[-2], outputs[-1]],
         ["carry", "w0", "w1", "params", "settings", "y_error", "y_step"],
-        ["carry_next", "y", "u"],
+        ["carry_next", "y", "u", "step_error"],
     )
 
 
@@ -142,12 +185,15 @@ def ros2_period(
     period_s: float,
     substeps: int,
     sensitivities: bool = False,
-) -> tuple[ca.SX, ca.SX | None, ca.SX | None]:
+    error_scales: np.ndarray | None = None,
+) -> tuple[ca.SX, ca.SX | None, ca.SX | None, ca.SX | None]:
     r"""``substeps`` ROS2 steps of ``plant`` over one period with u held (module notes).
 
-    Returns (x_next, A, B); with ``sensitivities`` A and B are the period's sensitivities of the
-    *flow*: the variational equation δẋ = J δx + J_u δu integrated by the same ROS2 steps with
-    each substep's Jacobians (J, J_u at its start: the linear ROS2 update
+    Returns (x_next, A, B, error); with ``error_scales`` (one per state) error is the largest
+    |½ h (k_1 + k_2)| / scale over the states and substeps (the embedded first-order solution's
+    distance, module notes), else None. With ``sensitivities`` A and B are the period's
+    sensitivities of the *flow*: the variational equation δẋ = J δx + J_u δu integrated by the
+    same ROS2 steps with each substep's Jacobians (J, J_u at its start: the linear ROS2 update
     δ ← δ + h (3/2 κ₁ + 1/2 κ₂), W κ₁ = J δ + J_u δu, W κ₂ = J (δ + h κ₁) + J_u δu − 2 κ₁).
     They approximate ∂x(t + h)/∂(x, u) of the ODE to the method's order; the derivative of the
     discrete step itself also differentiates J and the second stage's f, which where a substep
@@ -162,7 +208,7 @@ def ros2_period(
     if sensitivities:
         outputs.append(ca.jacobian(rate_s, us))
     rate_and_jacobian = ca.Function("rate_and_jacobian", [xs, us, ws, params], outputs)
-    state = x
+    state, error = x, None
     flow = ca.SX.eye(nx + 1)[:nx, :] if sensitivities else None  # (A | B), δ per unit (δx, δu)
     for index in range(substeps):
         w_start = w0 + (w1 - w0) * (index / substeps)
@@ -177,10 +223,13 @@ def ros2_period(
             flow = flow + 1.5 * step * k1 + 0.5 * step * k2
         k1 = solve(rate)
         k2 = solve(plant(state + step * k1, u, w_end, params)[0] - 2.0 * k1)
+        if error_scales is not None:
+            estimate = ca.mmax(ca.fabs(0.5 * step * (k1 + k2)) / ca.DM(error_scales))
+            error = estimate if error is None else ca.fmax(error, estimate)
         state = state + 1.5 * step * k1 + 0.5 * step * k2
     if not sensitivities:
-        return state, None, None
-    return state, flow[:, :nx], flow[:, nx]
+        return state, None, None, error
+    return state, flow[:, :nx], flow[:, nx], error
 
 
 _COMPILED: dict[tuple[str, float, int, bool, str], tuple[ca.Function, str]] = {}

@@ -38,6 +38,8 @@ their reasons:
   2631 input checks cite); the paper's course peaks at 35 m/s². The run that reached it (class E at
   40 km/h, full bucket, seed 1, t = 13.287 s: ẋ_H jumped by 13 m/s in one 1 ms period) was a failed
   fixed-step integration step: with 2 ROS2 substeps per period it stays below 0.2 rad of pitch.
+  Such periods are now integrated again finer where the substeps' error estimate flags them
+  (:mod:`~loader_model.simulation.simulator`); the bound stays as the last guard.
 - Non-finite numbers: :class:`~loader_model.simulation.validity_check.SimulationError` naming the
   time and the last finite state, as before.
 
