@@ -43,6 +43,14 @@ def test_reductions_stand_beside_their_own_condition():
     ) in render_markdown(reductions=reductions)
 
 
+#: Relative tolerance of the simulated baselines: the simulator is deterministic on one CPU, but
+#: NumPy's SIMD kernels differ between CPUs and the tyres' lift-offs amplify the last digits:
+#: the baseline at 9 km/h, empty, read 4.286061 on the machine that wrote the earlier table and
+#: 4.286081 (4.5e-6) on an AMD EPYC without AVX-512 (the other three conditions 1.5e-9 to
+#: 1.7e-6). The bounds themselves are linear algebra: 1e-15 apart there.
+SIMULATED_RTOL = 1e-4
+
+
 @pytest.mark.slow
 def test_shipped_table_is_current():
     shipped, current = load_table(), compute_table()
@@ -50,4 +58,5 @@ def test_shipped_table_is_current():
     for name, row in current.items():
         for key, value in row.items():
             if isinstance(value, float):
-                assert shipped[name][key] == pytest.approx(value, rel=1e-6), (name, key)
+                rtol = SIMULATED_RTOL if key.startswith("baseline") else 1e-6
+                assert shipped[name][key] == pytest.approx(value, rel=rtol), (name, key)

@@ -2,7 +2,9 @@
 
 ``make calibrate-table6`` and ``make fidelity`` write these files; when the model changes, the
 numbers below move and these tests say which file to remake. The simulated trials are
-deterministic (seeded, fixed-step), so the tolerances cover library round-off only.
+deterministic (seeded, fixed-step) on one machine; across CPUs NumPy's SIMD kernels differ in
+the last digits and the tyres' lift-offs amplify that (a baseline a_total 4.5e-6 apart on two
+machines, measured), so the tolerances cover that, not only library round-off.
 """
 
 from __future__ import annotations
@@ -75,4 +77,4 @@ def test_the_shipped_budget_is_current() -> None:
             ), (summary["label"], key)
         assert summary["within"] == want["within"]
         for key, value in summary["baseline_a_total"].items():
-            assert np.isclose(value, want["baseline_a_total"][key], rtol=1e-6), key
+            assert np.isclose(value, want["baseline_a_total"][key], rtol=1e-4), key
