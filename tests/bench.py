@@ -286,11 +286,11 @@ BASELINE_SPAN_S = 3.0
 
 
 def _bench_bound() -> None:
-    """The linear (non-causal LQ) bound of one paper course at 18 km/h (11.5 s, 1150 command
+    """The linear (non-causal LQ) bound of one paper course at 18 km/h (11.55 s, 1155 command
     values; goal < 5 s), by the Riccati sweep and by the sparse KKT solve; the constrained linear
-    bound; the nonlinear bound (Gauss-Newton SQP in the simulator) on the first
-    :data:`NONLINEAR_BENCH_S` of the 9 km/h course, warm-started from the refined skyhook, with
-    its iterations and time per iteration (the issue's goal is 12 s in 2 minutes, converged:
+    bound; the nonlinear bound (Gauss-Newton SQP in the simulator) on the whole
+    :data:`NONLINEAR_BENCH_KMH` km/h course, warm-started from the refined skyhook, with its
+    iterations and time per iteration (the issue's goal is 12 s in 2 minutes, converged:
     docs/guide/bound.md)."""
     from loader_model.bound.linear import solve_linear_bound
     from loader_model.bound.problem import bound_problem
@@ -319,29 +319,36 @@ def _bench_bound() -> None:
     _bench_nonlinear_bound(plant, riccati)
 
 
-#: Horizon of the nonlinear bound's benchmark, s (the issue's goal: 12 s in under 2 minutes).
-NONLINEAR_BENCH_S = 12.0
+#: Speed of the nonlinear bound's benchmark, km/h: the paper's course at 18 km/h is 11.55 s long
+#: and ends with 3 s of settling, the issue's "one 12 s course" (the first 12 s of the 9 km/h
+#: course end in a touchdown at 11.97 s, which the end condition at rest cannot meet).
+NONLINEAR_BENCH_KMH = 18.0
 
 
 def _bench_nonlinear_bound(plant, riccati: float) -> None:
-    """One nonlinear bound solve (module notes of loader_model.bound.nonlinear); one run."""
+    """One nonlinear bound solve (module notes of loader_model.bound.nonlinear) of the whole
+    18 km/h paper course, warm-started from the refined skyhook; one run. The linearised
+    period's compilation (once per machine, cached) is timed apart."""
     from loader_model.bound.nonlinear import solve_nonlinear_bound
     from loader_model.bound.problem import bound_problem
-    from loader_model.bound.trajectory import linearised_period
+    from loader_model.bound.trajectory import linearise, linearised_period, rollout
     from loader_model.experiments.designed_gains import refined_settings
     from loader_model.simulation import paper_course
     from loader_model.simulation.scenario import ride_scenario
     from loader_model.simulation.simulator import course_input, simulate
 
     start = time.perf_counter()
-    linearised_period()  # the flow's sensitivities of one period in SX (compiled, cached, later)
-    _report("nonlinear bound: build the linearised period", time.perf_counter() - start, unit="s")
-    road = course_input(paper_course(9.0), plant)
-    problem = bound_problem(plant, road, duration_s=NONLINEAR_BENCH_S)
+    linearised_period()  # the flow's sensitivities of one period in SX
+    road = course_input(paper_course(NONLINEAR_BENCH_KMH), plant)
+    short = bound_problem(plant, road, duration_s=0.02)
+    linearise(short, rollout(short, np.full(short.intervals, plant.u0)), compile_missing=True)
+    label = "nonlinear bound: build and compile the period"
+    _report(label, time.perf_counter() - start, unit="s")
+    problem = bound_problem(plant, road)
     scenario = ride_scenario(plant, "skyhook", refined_settings())
     warm = simulate(road, scenario, duration_s=problem.duration_s)
     bound = solve_nonlinear_bound(problem, warm)
-    label = f"nonlinear bound, {problem.duration_s:.1f} s course"
+    label = f"nonlinear bound, {problem.duration_s:.2f} s course (goal < 120 s)"
     _report(label, bound.solve_s, riccati, unit="s")
     print(
         f"{'':<42}{bound.iterations} SQP iterations, {bound.time_per_iteration_s:.2f} s each, "
@@ -350,7 +357,8 @@ def _bench_nonlinear_bound(plant, riccati: float) -> None:
         f"{bound.max_violation:.1e} of the limits (baseline: the linear Riccati sweep)"
     )
     parts = ", ".join(f"{name} {seconds:.1f} s" for name, seconds in bound.timings_s.items())
-    print(f"{'':<42}time by part: {parts}; {bound.restorations} restoration steps")
+    print(f"{'':<42}time by part: {parts}; {bound.restorations} restoration steps, "
+          f"{bound.corrections} second-order corrections")  # fmt: skip
 
 
 def _bench_simulator() -> None:
