@@ -186,9 +186,8 @@ def rollout(problem: BoundProblem, command: np.ndarray) -> Trajectory:
             size, index = int(failed[0]) + 1, start + int(failed[0])
             before = carry if failed[0] == 0 else block[failed[0] - 1]
             block[failed[0]] = refine_period(
-                hold_command_controller(), CONTROLLER_PERIOD_S, DEFAULT_SUBSTEPS,
-                DEFAULT_MACHINE, before, exo[index], exo[index + 1], plant.params,
-                u_k[index : index + 1], zeros[0], zeros[0],
+                CONTROLLER_PERIOD_S, DEFAULT_SUBSTEPS, DEFAULT_MACHINE, before,
+                block[failed[0]], exo[index], exo[index + 1], plant.params,
             )  # fmt: skip
         states[start] = carry[:nx]
         states[start + 1 : start + size] = block[: size - 1, :nx]

@@ -7,8 +7,9 @@ controller arguments it builds one) from the plant's static equilibrium
 (zero-order hold on its command) and integrates the plant over each period with the compiled
 ROS2 scheme of :mod:`~loader_model.simulation.stepper`, rolled over chunks of periods by
 ``mapaccum``. A period whose substeps' error estimate passes :data:`STEP_ERROR_LIMIT` (a failed
-linearly implicit step at the tyres' stick-slip switch: the stepper's notes) is integrated again
-with :data:`REFINEMENT` times the substeps and the chunk resumes after it; the result's
+linearly implicit step at the tyres' stick-slip switch: the stepper's notes) has its plant
+integrated again with :data:`REFINEMENT` times the substeps (:func:`refine_period`; its
+controller step is kept) and the chunk resumes after it; the result's
 metadata lists those periods (``refined_periods``). After each chunk it checks the rows against
 the model's range of validity (:mod:`~loader_model.simulation.validity`: tip-over pitch, boom
 angle beyond the end stops, time in the air, seat acceleration) and stops at the first
@@ -39,7 +40,7 @@ from loader_model.simulation.courses import Course
 from loader_model.simulation.events import DEFAULT_AIRBORNE_MIN_S, find_events
 from loader_model.simulation.result import SimulationResult
 from loader_model.simulation.scenario import Scenario, as_plant, as_scenario
-from loader_model.simulation.stepper import compile_period
+from loader_model.simulation.stepper import compile_period, plant_steps
 from loader_model.simulation.tandem_cam import DEFAULT_ENVELOPE, TandemCam, check_envelope
 from loader_model.simulation.travel import DEFAULT_TYRE_RADIUS_M, RoadInput
 from loader_model.simulation.validity import ValidityBounds, resolve_bounds
@@ -296,8 +297,8 @@ def simulate(
             size, index = int(failed[0]) + 1, start + int(failed[0])
             before = carry if failed[0] == 0 else block[failed[0] - 1]
             block[failed[0]] = refine_period(
-                controller, period_s, substeps, machine, before, exogenous[index],
-                exogenous[index + 1], params, settings_vector, y_errors[index], y_steps,
+                period_s, substeps, machine, before, block[failed[0]], exogenous[index],
+                exogenous[index + 1], params,
             )  # fmt: skip
             stop = start + size
             refined.append(index)
@@ -398,20 +399,29 @@ def _rolled(period: ca.Function, chunk: int) -> ca.Function:
 
 
 def refine_period(
-    controller: ca.Function,
     period_s: float,
     substeps: int,
     machine: str,
     carry: np.ndarray,
-    *inputs: np.ndarray,
+    coarse_next: np.ndarray,
+    w0: np.ndarray,
+    w1: np.ndarray,
+    params: np.ndarray,
 ) -> np.ndarray:
-    """The carry after one period integrated with :data:`REFINEMENT` times ``substeps`` ROS2
-    steps (a period whose error estimate passed :data:`STEP_ERROR_LIMIT`; module notes), in
-    CasADi's virtual machine (one period: no compilation). ``inputs`` are the period's other
-    arguments (w0, w1, params, settings, y_error, y_step); the controller's part is the same
-    as the coarse period's, so z and u are unchanged."""
-    fine = compile_period(controller, period_s, REFINEMENT * substeps, False, machine)[0]
-    return np.asarray(fine(carry, *inputs)[0], dtype=float).ravel()
+    """The carry after a period whose error estimate passed :data:`STEP_ERROR_LIMIT` (module
+    notes), its plant integrated again with :data:`REFINEMENT` times ``substeps`` ROS2 steps:
+    :data:`REFINEMENT` parts of the period of ``substeps`` steps each
+    (:func:`~loader_model.simulation.stepper.plant_steps`, the exogenous input linear over the
+    period as in the period Function). The controller's part, z and the command u held over
+    the period, is the coarse period's ``coarse_next`` (the carry it returned)."""
+    steps = plant_steps(period_s / REFINEMENT, substeps, machine)
+    nx = steps.size1_in(0)
+    state, command = carry[:nx], coarse_next[-1]
+    for part in range(REFINEMENT):
+        start = w0 + (w1 - w0) * (part / REFINEMENT)
+        end = w1 if part == REFINEMENT - 1 else w0 + (w1 - w0) * ((part + 1) / REFINEMENT)
+        state = np.asarray(steps(state, command, start, end, params), dtype=float).ravel()
+    return np.concatenate([state, coarse_next[nx:]])
 
 
 def _sensor_errors(

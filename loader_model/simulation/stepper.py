@@ -36,6 +36,7 @@ periods with ``mapaccum``; the period is compiled to C once per machine where a 
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 
@@ -54,6 +55,7 @@ __all__ = [
     "compile_period",
     "lu_solver",
     "period_function",
+    "plant_steps",
     "ros2_period",
     "step_error_scales",
 ]
@@ -230,6 +232,31 @@ def ros2_period(
     if not sensitivities:
         return state, None, None, error
     return state, flow[:, :nx], flow[:, nx], error
+
+
+@functools.cache
+def plant_steps(period_s: float, substeps: int, machine: str = DEFAULT_MACHINE) -> ca.Function:
+    """``steps(x, u, w0, w1, params) -> x_next``: ``substeps`` ROS2 steps of the plant over
+    ``period_s`` with u held and the exogenous input linear from w0 to w1, without a controller
+    (:func:`ros2_period`), in CasADi's virtual machine: the simulator's refinement of a failed
+    period (built in about 0.3 s, one evaluation 0.3 ms)."""
+    plant = plant_function(machine)
+    layout = plant_layout(machine)
+    x = ca.SX.sym("x", len(layout.state_names))
+    u = ca.SX.sym("u")
+    w0, w1 = (
+        ca.SX.sym("w0", len(layout.exogenous_names)),
+        ca.SX.sym("w1", len(layout.exogenous_names)),
+    )
+    params = ca.SX.sym("params", plant.size1_in(3))
+    x_next = ros2_period(plant, x, u, w0, w1, params, period_s, substeps)[0]
+    return ca.Function(
+        "plant_steps",
+        [x, u, w0, w1, params],
+        [x_next],
+        ["x", "u", "w0", "w1", "params"],
+        ["x_next"],
+    )
 
 
 _COMPILED: dict[tuple[str, float, int, bool, str], tuple[ca.Function, str]] = {}

@@ -106,6 +106,24 @@ def test_rollout_is_the_simulators_replay(plant, road, problem):
     assert np.max(np.abs(ours - theirs)) <= 1e-9 * np.max(np.abs(theirs))
 
 
+def test_rollout_refines_the_periods_the_simulator_refines(plant, road, monkeypatch):
+    """With the step-error limit below zero both the bound's rollout and the simulator refine
+    every period (integrate it again with 16 substeps): over 0.05 s their seat samples are
+    still equal, to 1e-9 of their size (measured: identical)."""
+    from loader_model.bound import trajectory
+    from loader_model.simulation import simulator
+
+    monkeypatch.setattr(simulator, "STEP_ERROR_LIMIT", -1.0)
+    monkeypatch.setattr(trajectory, "STEP_ERROR_LIMIT", -1.0)
+    problem = bound_problem(plant, road, duration_s=0.05)
+    command = plant.u0 + 0.1 * problem.u_bounds[1] * np.cos(np.arange(problem.intervals) / 9)
+    played = replay(plant, road, command, problem.hold_periods)
+    assert len(played.metadata["refined_periods"]) == problem.periods
+    ours = rollout(problem, command).seat()
+    theirs = np.column_stack([played[s] - played[s][0] for s in seat_weighting().signals])
+    assert np.max(np.abs(ours - theirs)) <= 1e-9 * np.max(np.abs(theirs))
+
+
 def test_the_noise_floor_is_zero_without_perturbation_and_tiny_on_a_small_board(plant, road):
     """The simulator is deterministic (no perturbation: no spread), and on 0.5 s over the 5 mm
     board, where nothing switches, round-off-sized changes of the command stay at round-off in

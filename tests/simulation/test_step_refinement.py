@@ -36,7 +36,8 @@ def _states(result) -> np.ndarray:
 def test_every_period_refined_is_the_finer_run(passive, monkeypatch) -> None:
     """With the limit below zero, 0.3 s over the board refined period by period equals the run
     with REFINEMENT × substeps throughout (both in CasADi's virtual machine), to 1e-9 of each
-    state's range (measured: identical), and every period is listed."""
+    state's range (measured 8.7e-16: the refinement interpolates the road over the period's
+    parts, the finer period over its substeps), and every period is listed."""
     params, road = passive
     fine = 4 * simulator.REFINEMENT
     reference = simulate(road, params, duration_s=0.3, substeps=fine, jit=False)
