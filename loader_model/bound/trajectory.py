@@ -39,10 +39,11 @@ import numpy as np
 from loader_model.bound.problem import PATH_SIGNALS, BoundProblem
 from loader_model.machines import DEFAULT_MACHINE
 from loader_model.plant.plant import OUTPUT_NAMES, STATE_NAMES, plant_function
+from loader_model.simulation import refinement
 from loader_model.simulation.compiled import CompilationError, cached_function, compiled_function
 from loader_model.simulation.controllers import CONTROLLER_PERIOD_S, hold_command_controller
 from loader_model.simulation.result import seat_signal_names
-from loader_model.simulation.simulator import DEFAULT_SUBSTEPS, STEP_ERROR_LIMIT, refine_period
+from loader_model.simulation.simulator import DEFAULT_SUBSTEPS
 from loader_model.simulation.stepper import compile_period, ros2_period
 
 __all__ = [
@@ -181,11 +182,11 @@ def rollout(problem: BoundProblem, command: np.ndarray) -> Trajectory:
         rows = np.arange(start, start + _CHUNK).clip(max=count - 1)
         w0[:], w1[:], settings[:] = exo[rows], exo[rows + 1], u_k[rows]
         evaluate()
-        failed = np.flatnonzero(error_block[:size] > STEP_ERROR_LIMIT)
+        failed = np.flatnonzero(error_block[:size] > refinement.STEP_ERROR_LIMIT)
         if failed.size:  # as the simulator: the failed period integrated again finer
             size, index = int(failed[0]) + 1, start + int(failed[0])
             before = carry if failed[0] == 0 else block[failed[0] - 1]
-            block[failed[0]] = refine_period(
+            block[failed[0]] = refinement.refine_period(
                 CONTROLLER_PERIOD_S, DEFAULT_SUBSTEPS, DEFAULT_MACHINE, before,
                 block[failed[0]], exo[index], exo[index + 1], plant.params,
             )  # fmt: skip

@@ -6,10 +6,10 @@ controller arguments it builds one) from the plant's static equilibrium
 (:func:`~loader_model.plant.equilibrium.static_state`), evaluates the controller every period h
 (zero-order hold on its command) and integrates the plant over each period with the compiled
 ROS2 scheme of :mod:`~loader_model.simulation.stepper`, rolled over chunks of periods by
-``mapaccum``. A period whose substeps' error estimate passes :data:`STEP_ERROR_LIMIT` (a failed
-linearly implicit step at the tyres' stick-slip switch: the stepper's notes) has its plant
-integrated again with :data:`REFINEMENT` times the substeps (:func:`refine_period`; its
-controller step is kept) and the chunk resumes after it; the result's
+``mapaccum``. A period whose substeps' error estimate flags a failed step (a linearly implicit
+step across the tyres' stick-slip switch: :mod:`~loader_model.simulation.refinement`) has its
+plant integrated again with finer substeps, its controller step kept, and the chunk resumes
+after it; the result's
 metadata lists those periods (``refined_periods``). After each chunk it checks the rows against
 the model's range of validity (:mod:`~loader_model.simulation.validity`: tip-over pitch, boom
 angle beyond the end stops, time in the air, seat acceleration) and stops at the first
@@ -34,13 +34,13 @@ import numpy as np
 from loader_model.control.sensors import SENSOR_NAMES, SensorModel, quantise
 from loader_model.plant.plant import OUTPUT_NAMES, STATE_NAMES
 from loader_model.plant.scenario import PlantScenario
-from loader_model.simulation import validity_check
+from loader_model.simulation import refinement, validity_check
 from loader_model.simulation.controllers import CONTROLLER_PERIOD_S
 from loader_model.simulation.courses import Course
 from loader_model.simulation.events import DEFAULT_AIRBORNE_MIN_S, find_events
 from loader_model.simulation.result import SimulationResult
 from loader_model.simulation.scenario import Scenario, as_plant, as_scenario
-from loader_model.simulation.stepper import compile_period, plant_steps
+from loader_model.simulation.stepper import compile_period
 from loader_model.simulation.tandem_cam import DEFAULT_ENVELOPE, TandemCam, check_envelope
 from loader_model.simulation.travel import DEFAULT_TYRE_RADIUS_M, RoadInput
 from loader_model.simulation.validity import ValidityBounds, resolve_bounds
@@ -49,13 +49,10 @@ from loader_model.simulation.validity_check import ModelValidityError, Simulatio
 __all__ = [
     "DEFAULT_CHUNK_PERIODS",
     "DEFAULT_SUBSTEPS",
-    "REFINEMENT",
-    "STEP_ERROR_LIMIT",
     "ModelValidityError",
     "SimulationError",
     "course_input",
     "exogenous_table",
-    "refine_period",
     "simulate",
 ]
 
@@ -69,14 +66,6 @@ DEFAULT_CHUNK_PERIODS = 500
 #: with 2, +0.24 % with 4, 0.00 % with 8; rigid discs −4.6 %, −5.3 %, 0.00 %, 0.00 %). Four cost
 #: 3.0x the integration time of one (38 ms -> 114 ms for the 15 s course, warm, this machine).
 DEFAULT_SUBSTEPS = 4
-#: Largest error estimate of a period's substeps, in units of the states' scales
-#: (:func:`~loader_model.simulation.stepper.step_error_scales`), above which the period is
-#: integrated again with :data:`REFINEMENT` times the substeps (module notes of
-#: :mod:`~loader_model.simulation.stepper`: failed steps read 150 to 11 600, every other period
-#: of the 16 paper-course runs below 3 and up to 18 right after a failed step).
-STEP_ERROR_LIMIT = 30.0
-#: Substeps of a refined period, as a multiple of the run's.
-REFINEMENT = 4
 #: Outputs that are states of the same name and value; they appear once in the result.
 _STATE_OUTPUTS = frozenset(OUTPUT_NAMES) & frozenset(STATE_NAMES)
 
@@ -292,11 +281,11 @@ def simulate(
         e_block[:] = y_errors[rows]
         trigger()
         size = stop - start
-        failed = np.flatnonzero(error_block[:size] > STEP_ERROR_LIMIT)
+        failed = np.flatnonzero(error_block[:size] > refinement.STEP_ERROR_LIMIT)
         if failed.size:  # keep the rows up to the failed period, integrate it again finer
             size, index = int(failed[0]) + 1, start + int(failed[0])
             before = carry if failed[0] == 0 else block[failed[0] - 1]
-            block[failed[0]] = refine_period(
+            block[failed[0]] = refinement.refine_period(
                 period_s, substeps, machine, before, block[failed[0]], exogenous[index],
                 exogenous[index + 1], params,
             )  # fmt: skip
@@ -396,32 +385,6 @@ def _rolled(period: ca.Function, chunk: int) -> ca.Function:
             ["carry_next", "y", "u", "step_error"],
         )
     return _ROLLED[key]
-
-
-def refine_period(
-    period_s: float,
-    substeps: int,
-    machine: str,
-    carry: np.ndarray,
-    coarse_next: np.ndarray,
-    w0: np.ndarray,
-    w1: np.ndarray,
-    params: np.ndarray,
-) -> np.ndarray:
-    """The carry after a period whose error estimate passed :data:`STEP_ERROR_LIMIT` (module
-    notes), its plant integrated again with :data:`REFINEMENT` times ``substeps`` ROS2 steps:
-    :data:`REFINEMENT` parts of the period of ``substeps`` steps each
-    (:func:`~loader_model.simulation.stepper.plant_steps`, the exogenous input linear over the
-    period as in the period Function). The controller's part, z and the command u held over
-    the period, is the coarse period's ``coarse_next`` (the carry it returned)."""
-    steps = plant_steps(period_s / REFINEMENT, substeps, machine)
-    nx = steps.size1_in(0)
-    state, command = carry[:nx], coarse_next[-1]
-    for part in range(REFINEMENT):
-        start = w0 + (w1 - w0) * (part / REFINEMENT)
-        end = w1 if part == REFINEMENT - 1 else w0 + (w1 - w0) * ((part + 1) / REFINEMENT)
-        state = np.asarray(steps(state, command, start, end, params), dtype=float).ravel()
-    return np.concatenate([state, coarse_next[nx:]])
 
 
 def _sensor_errors(

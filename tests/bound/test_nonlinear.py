@@ -110,11 +110,9 @@ def test_rollout_refines_the_periods_the_simulator_refines(plant, road, monkeypa
     """With the step-error limit below zero both the bound's rollout and the simulator refine
     every period (integrate it again with 16 substeps): over 0.05 s their seat samples are
     still equal, to 1e-9 of their size (measured: identical)."""
-    from loader_model.bound import trajectory
-    from loader_model.simulation import simulator
+    from loader_model.simulation import refinement
 
-    monkeypatch.setattr(simulator, "STEP_ERROR_LIMIT", -1.0)
-    monkeypatch.setattr(trajectory, "STEP_ERROR_LIMIT", -1.0)
+    monkeypatch.setattr(refinement, "STEP_ERROR_LIMIT", -1.0)
     problem = bound_problem(plant, road, duration_s=0.05)
     command = plant.u0 + 0.1 * problem.u_bounds[1] * np.cos(np.arange(problem.intervals) / 9)
     played = replay(plant, road, command, problem.hold_periods)

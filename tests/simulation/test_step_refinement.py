@@ -1,5 +1,5 @@
 """A period whose ROS2 substeps fail is integrated again finer (module notes of
-:mod:`loader_model.simulation.stepper` and :mod:`loader_model.simulation.simulator`).
+:mod:`loader_model.simulation.stepper` and :mod:`loader_model.simulation.refinement`).
 
 Which periods fail depends on the trajectory's last digits (measured on an AMD EPYC: the rear
 tyre's anchor jumped 2 cm in one period of the passive run at 9 km/h, full bucket, 4.705 s), so
@@ -14,7 +14,7 @@ import pytest
 
 from loader_model.experiments.trials import plant_for
 from loader_model.plant.plant import STATE_NAMES
-from loader_model.simulation import simulator
+from loader_model.simulation import refinement
 from loader_model.simulation.courses import Course
 from loader_model.simulation.roads import board_course
 from loader_model.simulation.simulator import course_input, simulate
@@ -39,9 +39,9 @@ def test_every_period_refined_is_the_finer_run(passive, monkeypatch) -> None:
     state's range (measured 8.7e-16: the refinement interpolates the road over the period's
     parts, the finer period over its substeps), and every period is listed."""
     params, road = passive
-    fine = 4 * simulator.REFINEMENT
+    fine = 4 * refinement.REFINEMENT
     reference = simulate(road, params, duration_s=0.3, substeps=fine, jit=False)
-    monkeypatch.setattr(simulator, "STEP_ERROR_LIMIT", -1.0)
+    monkeypatch.setattr(refinement, "STEP_ERROR_LIMIT", -1.0)
     refined = simulate(road, params, duration_s=0.3, substeps=4)
     assert len(refined.metadata["refined_periods"]) == refined.time_s.size
     ours, theirs = _states(refined), _states(reference)
@@ -55,7 +55,7 @@ def test_without_refinement_the_run_is_the_plain_one(passive, monkeypatch) -> No
     params, road = passive
     plain = simulate(road, params, duration_s=0.1)
     assert plain.metadata["refined_periods"] == []
-    monkeypatch.setattr(simulator, "STEP_ERROR_LIMIT", np.inf)
+    monkeypatch.setattr(refinement, "STEP_ERROR_LIMIT", np.inf)
     again = simulate(road, params, duration_s=0.1)
     assert np.array_equal(_states(plain), _states(again))
 
