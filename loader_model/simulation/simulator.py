@@ -9,13 +9,13 @@ ROS2 scheme of :mod:`~loader_model.simulation.stepper`, rolled over chunks of pe
 ``mapaccum``. A period whose substeps' error estimate flags a failed step (a linearly implicit
 step across the tyres' stick-slip switch: :mod:`~loader_model.simulation.refinement`) has its
 plant integrated again with finer substeps, its controller step kept, and the chunk resumes
-after it; the result's
-metadata lists those periods (``refined_periods``). After each chunk it checks the rows against
-the model's range of validity (:mod:`~loader_model.simulation.validity`: tip-over pitch, boom
-angle beyond the end stops, time in the air, seat acceleration) and stops at the first
-violation with :class:`ModelValidityError`, which carries the time series up to it; then it
-checks that everything is finite and raises :class:`SimulationError` naming the time and the
-state if not: no NaN leaves the simulator.
+after it; the result's metadata lists those periods (``refined_periods``). After each chunk it
+checks the rows against the model's range of validity
+(:mod:`~loader_model.simulation.validity`: tip-over pitch, boom angle beyond the end stops,
+time in the air, seat acceleration) and stops at the first violation with
+:class:`ModelValidityError`, which carries the time series up to it; then it checks that
+everything is finite and raises :class:`SimulationError` naming the time and the state if not:
+no NaN leaves the simulator.
 Events (cavitation, tyre lift-off, end stops, pump saturation) are recorded in the result
 (:mod:`~loader_model.simulation.events`). Accuracy against a CVODES reference at rtol 1e-10:
 ``tests/simulation/test_simulator.py``.
