@@ -16,6 +16,7 @@
 - :mod:`~loader_model.bound.nonlinear`: the machine's bound, Gauss-Newton SQP in single shooting
   on the simulator's own period (:mod:`~loader_model.bound.trajectory`: rollout and exact
   linearisation; :mod:`~loader_model.bound.stage_model`: the Gauss-Newton QP in stage form;
+  :mod:`~loader_model.bound.stage_form`: that QP's data and sweeps;
   :mod:`~loader_model.bound.riccati_qp`: its Riccati interior point).
 - :mod:`~loader_model.bound.replay`: a controller that plays a command table back, and the
   replay through the simulator.

@@ -42,7 +42,8 @@ from loader_model.bound.feasibility import (
     path_violation,
 )
 from loader_model.bound.problem import BoundProblem
-from loader_model.bound.riccati_qp import StageQP, mean_condensed_curvature, solve_riccati_qp
+from loader_model.bound.riccati_qp import solve_riccati_qp
+from loader_model.bound.stage_form import StageQP, mean_condensed_curvature
 from loader_model.bound.stage_model import corrected_qp, stage_block, stage_qp
 from loader_model.bound.trajectory import DivergedRollout, Trajectory, linearise, rollout
 from loader_model.bound.weighting import SeatWeighting, seat_weighting

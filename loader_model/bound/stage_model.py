@@ -40,7 +40,7 @@ from dataclasses import replace
 import numpy as np
 
 from loader_model.bound.problem import PATH_SIGNALS, BoundProblem
-from loader_model.bound.riccati_qp import StageQP
+from loader_model.bound.stage_form import StageQP
 from loader_model.bound.trajectory import Linearisation, Trajectory
 from loader_model.bound.weighting import SeatWeighting
 from loader_model.plant.plant import OUTPUT_NAMES, STATE_NAMES

@@ -40,7 +40,7 @@ from loader_model.simulation.courses import Course
 from loader_model.simulation.events import DEFAULT_AIRBORNE_MIN_S, find_events
 from loader_model.simulation.result import SimulationResult
 from loader_model.simulation.scenario import Scenario, as_plant, as_scenario
-from loader_model.simulation.stepper import compile_period
+from loader_model.simulation.stepper import compile_period, rolled_period
 from loader_model.simulation.tandem_cam import DEFAULT_ENVELOPE, TandemCam, check_envelope
 from loader_model.simulation.travel import DEFAULT_TYRE_RADIUS_M, RoadInput
 from loader_model.simulation.validity import ValidityBounds, resolve_bounds
@@ -253,7 +253,7 @@ def simulate(
     machine = scenario.plant.machine
     period, backend = compile_period(controller, period_s, substeps, jit, machine)
     chunk = min(int(chunk_periods), count)
-    roll = _rolled(period, chunk)
+    roll = rolled_period(period, chunk)
     ncarry = len(state_names) + nz + 1
     # Arrays in CasADi's column-major layout: a (chunk, n) C-order array is an (n, chunk) matrix.
     carry = np.concatenate([x0, z0, [u0]])
@@ -350,41 +350,6 @@ def simulate(
     if violation is not None:
         raise ModelValidityError.stopping(violation, result)
     return result
-
-
-_ROLLED: dict[tuple[int, int], ca.Function] = {}
-
-
-def _rolled(period: ca.Function, chunk: int) -> ca.Function:
-    """``period.mapaccum`` over ``chunk`` periods with params, settings and the sensors' steps
-    given once (MX wrapper that repeats them), built once per period Function and chunk size."""
-    key = (id(period), chunk)
-    if key not in _ROLLED:
-        mapped = period.mapaccum("roll_mapped", chunk)
-        carry = ca.MX.sym("carry", period.size1_in(0))
-        w0 = ca.MX.sym("w0", period.size1_in(1), chunk)
-        w1 = ca.MX.sym("w1", period.size1_in(2), chunk)
-        params = ca.MX.sym("params", period.size1_in(3))
-        settings = ca.MX.sym("settings", period.size1_in(4))
-        y_error = ca.MX.sym("y_error", period.size1_in(5), chunk)
-        y_step = ca.MX.sym("y_step", period.size1_in(6))
-        outputs = mapped(
-            carry,
-            w0,
-            w1,
-            ca.repmat(params, 1, chunk),
-            ca.repmat(settings, 1, chunk),
-            y_error,
-            ca.repmat(y_step, 1, chunk),
-        )
-        _ROLLED[key] = ca.Function(
-            "roll",
-            [carry, w0, w1, params, settings, y_error, y_step],
-            outputs,
-            ["carry", "w0", "w1", "params", "settings", "y_error", "y_step"],
-            ["carry_next", "y", "u", "step_error"],
-        )
-    return _ROLLED[key]
 
 
 def _sensor_errors(

@@ -56,6 +56,7 @@ __all__ = [
     "lu_solver",
     "period_function",
     "plant_steps",
+    "rolled_period",
     "ros2_period",
     "step_error_scales",
 ]
@@ -289,3 +290,38 @@ def compile_period(
                 compiled, backend = period, "sx"
         _COMPILED[key] = (compiled, backend)
     return _COMPILED[key]
+
+
+_ROLLED: dict[tuple[int, int], ca.Function] = {}
+
+
+def rolled_period(period: ca.Function, chunk: int) -> ca.Function:
+    """``period.mapaccum`` over ``chunk`` periods with params, settings and the sensors' steps
+    given once (MX wrapper that repeats them), built once per period Function and chunk size."""
+    key = (id(period), chunk)
+    if key not in _ROLLED:
+        mapped = period.mapaccum("roll_mapped", chunk)
+        carry = ca.MX.sym("carry", period.size1_in(0))
+        w0 = ca.MX.sym("w0", period.size1_in(1), chunk)
+        w1 = ca.MX.sym("w1", period.size1_in(2), chunk)
+        params = ca.MX.sym("params", period.size1_in(3))
+        settings = ca.MX.sym("settings", period.size1_in(4))
+        y_error = ca.MX.sym("y_error", period.size1_in(5), chunk)
+        y_step = ca.MX.sym("y_step", period.size1_in(6))
+        outputs = mapped(
+            carry,
+            w0,
+            w1,
+            ca.repmat(params, 1, chunk),
+            ca.repmat(settings, 1, chunk),
+            y_error,
+            ca.repmat(y_step, 1, chunk),
+        )
+        _ROLLED[key] = ca.Function(
+            "roll",
+            [carry, w0, w1, params, settings, y_error, y_step],
+            outputs,
+            ["carry", "w0", "w1", "params", "settings", "y_error", "y_step"],
+            ["carry_next", "y", "u", "step_error"],
+        )
+    return _ROLLED[key]

@@ -16,7 +16,7 @@ from loader_model.bound.feasibility import merit_noise_floor
 from loader_model.bound.nonlinear import solve_nonlinear_bound
 from loader_model.bound.problem import bound_problem
 from loader_model.bound.replay import replay
-from loader_model.bound.riccati_qp import condensed_gradient
+from loader_model.bound.stage_form import condensed_gradient
 from loader_model.bound.stage_model import stage_qp
 from loader_model.bound.trajectory import linearise, rollout
 from loader_model.bound.weighting import seat_weighting

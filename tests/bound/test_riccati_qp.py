@@ -14,12 +14,8 @@ from hypothesis import strategies as st
 
 from loader_model.bound.constrained import path_limits
 from loader_model.bound.problem import PATH_SIGNALS, bound_problem
-from loader_model.bound.riccati_qp import (
-    StageQP,
-    condensed_gradient,
-    mean_condensed_curvature,
-    solve_riccati_qp,
-)
+from loader_model.bound.riccati_qp import solve_riccati_qp
+from loader_model.bound.stage_form import StageQP, condensed_gradient, mean_condensed_curvature
 from loader_model.bound.stage_model import stage_qp
 from loader_model.bound.trajectory import linearise, linearised_period, rollout
 from loader_model.bound.weighting import seat_weighting
@@ -230,7 +226,7 @@ def test_the_corrected_qp_predicts_the_simulated_step(plant, road, block):
     equal the simulated step's path values and end values (the linearisation's error is put
     back exactly, to 1e-9 of the limits), and they differ from the uncorrected rows by that
     error (nonzero here: the step is large)."""
-    from loader_model.bound.riccati_qp import _forward
+    from loader_model.bound.stage_form import forward as _forward
     from loader_model.bound.stage_model import corrected_qp, end_values
 
     problem = bound_problem(plant, road, duration_s=0.3)
