@@ -24,6 +24,7 @@ COMMANDS: dict[str, str] = {
     "simulate": "loader_model.commands.simulate_command",
     "export-fmu": "loader_model.commands.export_fmu_command",
     "design": "loader_model.commands.design_command",
+    "check-design": "loader_model.commands.check_design_command",
     "robustness": "loader_model.commands.robustness_command",
     "bound": "loader_model.commands.bound_command",
     "fidelity": "loader_model.commands.fidelity_command",
