@@ -129,7 +129,7 @@ _LABELS = {
     "outside-validity": "stopped outside the model's validity",
     "failed": "failed otherwise",
     "persistent-oscillation": "persistent oscillation after the road",
-    "pump-saturated": f"pump at its limit for more than {SATURATION_DUTY_LIMIT:.0%} of the run",
+    "pump-saturated": f"pump at its limit for more than {100 * SATURATION_DUTY_LIMIT:g} % of the run",
     "no-baseline": "no baseline to compare with",
 }
 
@@ -184,7 +184,7 @@ def report_text(study: Study, table: Any, gains: dict | None = None) -> str:
         "A run is counted in the a_total statistics only if it is evaluated: a run unstable on "
         "the linearised plant, diverged, stopped outside the model's validity, failed, "
         "oscillating on after the road or with the pump at its limit for more than "
-        f"{SATURATION_DUTY_LIMIT:.0%} of the run is its own category and counts as worse comfort "
+        f"{100 * SATURATION_DUTY_LIMIT:g} % of the run is its own category and counts as worse comfort "
         "in the probability over all samples."
     )
     for controller in study.controllers[1:]:
@@ -208,7 +208,7 @@ def report_text(study: Study, table: Any, gains: dict | None = None) -> str:
         if s["settle_not_assessed"]:
             lines.append(
                 f"- decay after the road not assessed on {s['settle_not_assessed']} runs (they "
-                f"end less than {3 * SETTLE_WINDOW_S:g} s after the road's last excitation: "
+                f"end less than {4 * SETTLE_WINDOW_S:g} s after the road's last excitation: "
                 "set a longer duration_s)"
             )
         if s["pump_saturation_s"].size and s["p_A_max_Pa"].size:

@@ -156,3 +156,31 @@ def test_a_study_of_the_printed_table3_gain_counts_its_samples_unstable(tmp_path
     skyhook = controller_summary(study, table, "skyhook")
     assert skyhook["counts"]["unstable"] == 0 and skyhook["evaluated"] == 2
     assert skyhook["p_worse_all"] == skyhook["p_worse"]  # no failures: the two agree
+
+
+#: Twice the shipped example study's robust K_fb (normalised ẋ_H, ẏ_H, θ̇1, φ): stable on the
+#: linearised nominal plant (largest loop pole real part −0.49 rad/s, smallest damping 0.007),
+#: but on the machine the pitch goes on oscillating at 3-3.6 rad/s² r.m.s. after the course.
+CYCLING_GAIN = [48.5, -110.02, -71.36, 45.42]
+
+
+@pytest.mark.slow  # four 16 s runs and the linear check: 14 s at load 8
+def test_a_limit_cycle_on_the_machine_is_its_own_category_where_a_decay_is_not() -> None:
+    from loader_model.robustness.gains import resolve_gains
+    from loader_model.robustness.runner import run_sample
+    from loader_model.robustness.sampling import SampleSpec
+
+    text = STUDY.replace("duration_s = 3.0", "duration_s = 16.0").replace(
+        'gains = { printed = "table3-printed" }',
+        f"gains = {{ cycling = {CYCLING_GAIN}, half = {[g / 2 for g in CYCLING_GAIN]} }}",
+    )
+    study = parse_study(text.replace('compare = ["skyhook"]', 'compare = ["passive"]'))
+    rows = run_sample(study, resolve_gains(study), SampleSpec(0, 18.0, 1.0, "empty", (), 5))
+    by_name = {row["controller"]: row for row in rows}
+    categories = dict(zip(by_name, categorise(rows, study.duration_s), strict=True))
+    cycling, half = by_name["cycling"], by_name["half"]
+    assert cycling["max_pole_real"] < -0.1  # the linear check alone passes it
+    assert cycling["settle_ratio"] > 0.8  # measured 0.93: no decay
+    assert categories["cycling"] == "persistent-oscillation"
+    assert half["settle_ratio"] < 0.1 and categories["half"] == "evaluated"
+    assert by_name["baseline"]["settle_ratio"] < PERSISTENCE_RATIO

@@ -1,4 +1,4 @@
-"""Robustness study (issue 14): the study file's checks, the seeded samples, failures, resume."""
+"""Robustness study: the study file's checks, the seeded samples, failures, resume."""
 
 from __future__ import annotations
 
