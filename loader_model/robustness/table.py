@@ -101,12 +101,14 @@ def read_parts(folder: Path, study: Study) -> set[int]:
 
 def combine_parts(folder: Path, study: Study) -> Any:
     """Combine the part files, sorted by sample then controller, into ``results.parquet`` and
-    ``results.csv`` in ``folder``; return the table."""
+    ``results.csv`` in ``folder``; return the table. Parts written before the ``category`` and
+    ``settle_ratio`` columns existed are read with them empty, and their rows categorised here."""
     import pyarrow as pa
     import pyarrow.csv as csv
     import pyarrow.parquet as pq
 
     from loader_model.io.export import write_atomically
+    from loader_model.robustness.outcomes import categorise
 
     schema = result_schema(study)
     parts = [pq.read_table(path, schema=schema) for path in _part_files(folder)]
@@ -114,6 +116,9 @@ def combine_parts(folder: Path, study: Study) -> Any:
     rank = {name: i for i, name in enumerate(study.controllers)}
     rows = table.to_pylist()
     rows.sort(key=lambda row: (row["sample"], rank.get(row["controller"], len(rank))))
+    if any(row["category"] is None for row in rows):  # parts written before the column existed
+        categories = categorise(rows, study.duration_s)
+        rows = [row | {"category": c} for row, c in zip(rows, categories, strict=True)]
     table = pa.Table.from_pylist(rows, schema=schema)
     write_atomically(
         folder / "results.parquet",

@@ -184,3 +184,27 @@ def test_a_limit_cycle_on_the_machine_is_its_own_category_where_a_decay_is_not()
     assert categories["cycling"] == "persistent-oscillation"
     assert half["settle_ratio"] < 0.1 and categories["half"] == "evaluated"
     assert by_name["baseline"]["settle_ratio"] < PERSISTENCE_RATIO
+
+
+def test_parts_without_categories_are_categorised_when_combined(tmp_path: Path) -> None:
+    """A results folder resumed from parts written before the category column existed."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
+    from loader_model.robustness.table import combine_parts, result_schema
+
+    study = parse_study(STUDY)
+    schema = result_schema(study)
+    old = pa.schema([f for f in schema if f.name not in ("category", "settle_ratio")])
+    conditions = {"speed_kmh": 18.0, "speed_factor": 1.0, "load": "full", "road_seed": 0}
+    conditions |= {"hydraulics.bulk_modulus": 1.5e9}
+    rows = [
+        _row(0, "baseline", 0.0) | conditions,
+        _row(0, "skyhook", -1.0, max_pole_real=-0.2) | conditions,
+        _row(0, "printed", -17.5, max_pole_real=0.05) | conditions,
+    ]
+    rows = [{k: v for k, v in row.items() if k in old.names} for row in rows]
+    (tmp_path / "parts").mkdir()
+    pq.write_table(pa.Table.from_pylist(rows, schema=old), tmp_path / "parts" / "part-0.parquet")
+    table = combine_parts(tmp_path, study)
+    assert table.column("category").to_pylist() == ["evaluated", "evaluated", "unstable"]
