@@ -100,7 +100,8 @@ def settle_ratio(result: Any, window_s: float = SETTLE_WINDOW_S) -> float:
     Parameters
     ----------
     result : SimulationResult
-        The run (columns ``thetadd_1`` [rad/s²], ``wd_<axle><x|y>`` [m/s]).
+        The run (columns ``thetadd_1`` [rad/s²], the seat's pitch axis, and
+        ``wd_<axle><x|y>`` [m/s]).
     window_s : float
         Window length w in s.
 
@@ -116,7 +117,9 @@ def settle_ratio(result: Any, window_s: float = SETTLE_WINDOW_S) -> float:
     end = time[np.flatnonzero(moving)[-1]] if moving is not None and moving.any() else time[0]
     if time[-1] - end < 4.0 * window_s:
         return math.nan
-    pitch = np.asarray(result["thetadd_1"], dtype=float)
+    from loader_model.simulation.result import seat_signal_names
+
+    pitch = np.asarray(result[seat_signal_names()["pitch"]], dtype=float)
     first = pitch[(time > end + window_s) & (time <= end + 2.0 * window_s)]
     last = pitch[time > time[-1] - window_s]
     first_rms = float(np.sqrt(np.mean(first**2)))
