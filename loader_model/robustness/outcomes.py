@@ -5,9 +5,9 @@ has its own category, the first of these that applies:
 
 - ``"unstable"``: the gain's designed closed loop (plant and skyhook, linearised at the sample's
   static equilibrium, :func:`~loader_model.robustness.gains.max_pole_real`) has a pole with a real
-  part above :data:`UNSTABLE_POLE_REAL` (Table 3 as printed, k_φ = −0.22, has one at about
-  +0.05 rad/s). Whatever the nonlinear run then does, the design is not a stable loop on this
-  plant, so its a_total is no improvement.
+  part above :data:`UNSTABLE_POLE_REAL` (Table 3 as printed, k_φ = −0.22, has one at +0.03 to
+  +0.05 rad/s on the skid-steer's sampled plants). Whatever the nonlinear run then does, the
+  design is not a stable loop on this plant, so its a_total is no improvement.
 - ``"diverged"``: the integration left the finite numbers
   (:class:`~loader_model.simulation.validity_check.SimulationError`).
 - ``"outside-validity"``: the run stopped where it left the model's range of validity
@@ -172,7 +172,7 @@ def categorise(rows: Iterable[dict[str, Any]], duration_s: float) -> list[str]:
     """
     rows = list(rows)
     baselines = {r["sample"]: r for r in rows if r["controller"] == "baseline"}
-    base_ratio = {s: r.get("settle_ratio", math.nan) for s, r in baselines.items()}
+    base_ratio = {s: _value(r, "settle_ratio") for s, r in baselines.items()}
     compared = {s for s, r in baselines.items() if not r["failed"] and _value(r, "a_total") > 0}
     categories = []
     for row in rows:

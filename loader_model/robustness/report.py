@@ -6,8 +6,9 @@ failed otherwise, a persistent oscillation after the road, the pump at its limit
 run, or no baseline to compare with. Per controller against the same sample's baseline:
 
 - how many samples fell in each category;
-- the probability of worse comfort over every sample with a baseline, **each failure counted as
-  worse**, and among the evaluated samples only (change > 0), each with a 95 % Wilson interval;
+- the probability of worse comfort over every sample (but those without a baseline), **each
+  failure counted as worse**, and among the evaluated samples only (change > 0), each with a
+  95 % Wilson interval;
 - the distribution of the a_total change in % (Eq. 50) over the evaluated samples only: mean,
   5 %, 50 % and 95 % quantiles (a failed or unstable run's a_total is no improvement);
 - the worst evaluated cases (largest change) with their conditions;
@@ -79,7 +80,8 @@ def controller_summary(study: Study, table: Any, controller: str) -> dict[str, A
 
     ``counts``: samples per category (every one of
     :data:`~loader_model.robustness.outcomes.CATEGORIES`); ``p_worse_all``: worse or failed
-    over the samples with a baseline (``compared``); ``p_worse``: worse among the ``evaluated``.
+    over the samples except ``"no-baseline"`` ones (``compared``); ``p_worse``: worse among the
+    ``evaluated``.
     """
     from scipy.stats import spearmanr
 
@@ -191,15 +193,17 @@ def report_text(study: Study, table: Any, gains: dict | None = None) -> str:
         s = controller_summary(study, table, controller)
         low, high = s["p_worse_interval"]
         all_low, all_high = s["p_worse_all_interval"]
+        no_baseline = s["counts"]["no-baseline"]
+        left_out = f"; {no_baseline} samples without a baseline left out" if no_baseline else ""
         lines += [
             "",
             f"## {controller}",
             "",
             f"- samples: {s['samples']}: {_counts(s['counts'])}",
             f"- probability of worse comfort: {s['p_worse_all']:.3f} over all {s['compared']} "
-            f"samples with a baseline, the {s['failures']} failures counted as worse (95 % CI "
-            f"{all_low:.3f}-{all_high:.3f}); {s['p_worse']:.3f} among the {s['evaluated']} "
-            f"evaluated samples (95 % CI {low:.3f}-{high:.3f})",
+            f"samples, the {s['failures']} failures counted as worse (95 % CI "
+            f"{all_low:.3f}-{all_high:.3f}{left_out}); {s['p_worse']:.3f} among the "
+            f"{s['evaluated']} evaluated samples (95 % CI {low:.3f}-{high:.3f})",
             f"- change of a_total over the evaluated samples: {_quantiles(s['change'])} "
             f"({s['evaluated']} samples)",
             f"- failed runs: {s['failed']}"

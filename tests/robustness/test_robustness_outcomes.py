@@ -130,7 +130,7 @@ def test_report_counts_unstable_samples_as_failures_not_improvements() -> None:
     assert controller_summary(study, table, "skyhook")["counts"]["unstable"] == 0
     text = report_text(study, table)
     assert "- samples: 8: 6 evaluated, 2 unstable on the linearised plant, 0 diverged" in text
-    assert "worse comfort: 0.375 over all 8 samples with a baseline, the 2 failures" in text
+    assert "worse comfort: 0.375 over all 8 samples, the 2 failures counted as worse" in text
     assert "0.167 among the 6 evaluated samples" in text
     assert "change of a_total over the evaluated samples: mean -3.7 %" in text
 
