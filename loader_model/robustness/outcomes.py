@@ -73,7 +73,8 @@ SETTLE_WINDOW_S = 1.0
 #: after the road, the baseline, whose 4.7 Hz boom mode is the least damped, 0.23-0.39, the
 #: shipped controllers and designs 0.001-0.16; on the example study with 20 s runs, the baseline
 #: 0.003-0.075, every other decaying run at most 0.005, the limit cycles 0.93 (twice the robust
-#: gain) and 1.28-3.72 (designed gains on some sampled plants), all with stable linearised loops.
+#: gain) and 1.28-3.72 (designed gains, stable on their linearised plants, and one virtual
+#: accumulator run).
 PERSISTENCE_RATIO = 0.5
 #: Largest share of the run the pump command may spend at its limit: beyond it the loop is mostly
 #: a bang-bang one, not the linear design. On the shipped example study (10 s runs) the designed
