@@ -58,9 +58,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--sampled-plants",
         type=int,
-        default=16,
+        default=None,
         metavar="N",
-        help="plants drawn for the sampled stability margin (default: 16; 0: none)",
+        help="plants drawn for the sampled stability margin (default: the envelope's, 16; 0: none)",
     )
     parser.add_argument(
         "--study",
@@ -107,7 +107,7 @@ def _check(args: argparse.Namespace, written: list[str]) -> int:
         check_output_path(args.output, (".md", ".csv"), "--output")
     if args.jobs < 1:
         raise ValueError(f"--jobs {args.jobs}: allowed: an integer >= 1")
-    if args.sampled_plants < 0:
+    if args.sampled_plants is not None and args.sampled_plants < 0:
         raise ValueError(f"--sampled-plants {args.sampled_plants}: allowed: an integer >= 0")
     envelope = DEFAULT_ENVELOPE if args.envelope is None else load_envelope(args.envelope)
     design = load_design(args.settings, args.controller, args.machine, args.params)

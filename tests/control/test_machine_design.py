@@ -92,6 +92,7 @@ def test_design_refine_on_the_wheel_loader_writes_settings_that_drive_as_printed
 
     target = tmp_path / "refined.toml"
     argv = ["design", "--machine", MACHINE, "--method", "refine", "--evaluations", "3"]
+    argv += ["--no-check", "--force"]  # the refinement is tested here, the check elsewhere
     assert cli.main([*argv, "--output", str(target)]) == 0
     printed = capsys.readouterr().out
     start = _printed_course_totals(printed, "optimised (linear)")

@@ -313,7 +313,8 @@ def test_comfort_design_drives_every_axle(files: tuple[Path, Path], tmp_path: Pa
     assert min(gains) > 0.05 * max(gains)
     output = tmp_path / "gains.toml"
     argv = ["design", "--machine", str(description), "--params", str(params), "--method", "lqr"]
-    assert main([*argv, "--output", str(output)]) == 0
+    # the gains, not their nonlinear check (tests/experiments/test_design_check.py), are tested
+    assert main([*argv, "--output", str(output), "--no-check", "--force"]) == 0
     assert "k_fb" in output.read_text(encoding="utf-8")
 
 

@@ -60,7 +60,7 @@ __all__ = [
 ]
 
 #: Plants drawn for the sampled margins by default.
-DEFAULT_SAMPLED_PLANTS = 16
+DEFAULT_SAMPLED_PLANTS = DEFAULT_ENVELOPE.sampled_plants
 
 
 def _run_batch(design: Design, envelope: Envelope, conditions: list[Condition]) -> list[Any]:
@@ -73,7 +73,7 @@ def check_design(
     *,
     jobs: int = 1,
     progress: bool = True,
-    sampled_plants: int = DEFAULT_SAMPLED_PLANTS,
+    sampled_plants: int | None = None,
     study: str | None = None,
 ) -> DesignCheck:
     """Drive, measure and judge ``design`` over ``envelope`` (module notes).
@@ -88,8 +88,9 @@ def check_design(
         Processes that drive the conditions (1: this one).
     progress : bool
         Show a progress bar over the conditions.
-    sampled_plants : int
-        Plants drawn for the sampled margins (skyhook designs), >= 0.
+    sampled_plants : int, optional
+        Plants drawn for the sampled margins (skyhook designs), >= 0 (default: the envelope's
+        :attr:`~Envelope.sampled_plants`).
     study : str, optional
         A robustness study file the plants are drawn from (default: the shipped example for
         the skid-steer; none for another machine).
@@ -107,6 +108,8 @@ def check_design(
 
     from loader_model.io.processes import worker_pool
 
+    if sampled_plants is None:
+        sampled_plants = envelope.sampled_plants
     if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
         raise ValueError(f"jobs = {jobs!r}; allowed: an integer >= 1")
     if (

@@ -23,6 +23,8 @@ extended to any speed (:func:`~loader_model.simulation.courses.board_spacing_m`:
     rate_duty = 0.10             # share with |dV_p/dt| at its limit
     tail_factor = 2.0            # residual pitch at the end vs the baseline's
     margin_rad_s = 0.1           # stability margin of the linearised loop per load
+    sampled_plants = 16          # plants drawn from the robustness study; the loop must be
+                                 # stable on each (0: none)
 """
 
 from __future__ import annotations
@@ -83,6 +85,7 @@ class Envelope:
     rate_duty: float = 0.10
     tail_factor: float = 2.0
     margin_rad_s: float = 0.1
+    sampled_plants: int = 16
     source: str = field(default="the default envelope", compare=False)
 
     def __post_init__(self) -> None:
@@ -126,6 +129,9 @@ def _check(envelope: Envelope) -> None:
         isinstance(s, int) and not isinstance(s, bool) and 0 <= s < 2**32 for s in envelope.seeds
     ):
         fail("seeds", envelope.seeds, "a non-empty list of integers from 0 to 2^32 - 1")
+    count = envelope.sampled_plants
+    if isinstance(count, bool) or not isinstance(count, int) or not 0 <= count <= 1000:
+        fail("sampled_plants", count, "an integer from 0 to 1000")
     bounds = {
         "road_seconds": (1.0, 120.0),
         "settle_s": (2.0, 30.0),
@@ -159,7 +165,14 @@ _SECTIONS = {
         "settle_s",
         "seeds",
     ),
-    "criteria": ("worse_than_baseline", "command_duty", "rate_duty", "tail_factor", "margin_rad_s"),
+    "criteria": (
+        "worse_than_baseline",
+        "command_duty",
+        "rate_duty",
+        "tail_factor",
+        "margin_rad_s",
+        "sampled_plants",
+    ),
 }
 
 
