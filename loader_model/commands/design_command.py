@@ -1,47 +1,46 @@
-"""Ride-comfort gain design (issue 11): K_fb minimising the ISO 2631-1 a_total (Eq. 50) on an
+"""Ride-comfort gain design: K_fb minimising the ISO 2631-1 a_total (Eq. 50) on an
 ISO 8608 road, beside Table 3 and the output-feedback LQR (Eq. 41, 42); writes Fig. 12."""
 
 from __future__ import annotations
 
 import argparse
 
+from loader_model.commands.common import add_machine_argument, add_progress_argument
+
 HELP = "design the skyhook gains K_fb (LQR or ISO 2631 optimisation); Fig. 12"
+GUIDE = "controllers.md"  # its page of the user guide (docs/guide/)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add ``--params``, ``--load``, ``--method``, ``--solver``, ``--road``, ``--speed``,
     ``--margin``, ``--plot`` and ``--output``."""
-    parser.add_argument(
-        "--machine",
-        metavar="NAME|FILE",
-        default="skid_steer",
-        help="a generated machine (skid_steer, compact_wheel_loader, ...) or its description "
-        "file; default: skid_steer (every method for every machine)",
-    )
+    add_machine_argument(parser, "; every method for every machine")
     parser.add_argument(
         "--params",
         metavar="FILE",
         default=None,
-        help="parameter file (for another machine than the skid-steer its flat file)",
+        help="parameter file (TOML; for another machine than the skid-steer its flat file) "
+        "(default: the shipped values of the machine)",
     )
     parser.add_argument(
         "--load",
         choices=("empty", "full", "both"),
         default="both",
-        help="bucket load(s) the gains are designed for (default: both, robust gains)",
+        help="bucket load the gains are designed for; both: gains robust over the empty and the "
+        "full bucket",
     )
     parser.add_argument(
         "--method",
         choices=("lqr", "optimise", "refine"),
         default="optimise",
         help="lqr: output-feedback LQR (Eq. 41, 42); optimise: ISO 2631 a_total on the linear "
-        "plant (default); refine: optimise, then refine on the nonlinear paper course at --speed",
+        "plant; refine: optimise, then refine on the nonlinear paper course at --speed",
     )
     parser.add_argument(
         "--solver",
         choices=("bfgs", "ipopt"),
         default="bfgs",
-        help="optimise/refine: bfgs: certified BFGS with adjoint gradients (default); ipopt: "
+        help="optimise/refine: bfgs: certified BFGS with adjoint gradients; ipopt: "
         "IPOPT through CasADi on the same cost (every iterate stable, same optimum)",
     )
     parser.add_argument(
@@ -49,14 +48,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         type=int,
         default=120,
         metavar="N",
-        help="refine: budget of course evaluations (120)",
+        help="refine: budget of course evaluations",
     )
-    parser.add_argument("--road", default="C", metavar="CLASS", help="ISO 8608 class A-H (C)")
-    parser.add_argument("--speed", type=float, default=9.0, metavar="KMH", help="km/h (9)")
+    parser.add_argument("--road", default="C", metavar="CLASS", help="ISO 8608 road class, A-H")
+    parser.add_argument("--speed", type=float, default=9.0, metavar="KMH", help="speed in km/h")
     parser.add_argument(
-        "--margin", type=float, default=0.1, metavar="RAD_S", help="stability margin σ (0.1)"
+        "--margin", type=float, default=0.1, metavar="RAD_S", help="stability margin σ in rad/s"
     )
-    parser.add_argument("--plot", metavar="FILE.png", default=None, help="write Fig. 12 here")
+    parser.add_argument("--plot", metavar="FILE.png", default=None, help="write Fig. 12 here (PNG)")
     parser.add_argument(
         "--output",
         metavar="FILE.toml",
@@ -64,6 +63,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="write a controller settings file with the designed gains "
         "(for loader-model simulate --controller FILE.toml)",
     )
+    add_progress_argument(parser)
 
 
 def _row(label: str, gain, evaluations) -> str:
@@ -94,6 +94,7 @@ def _refine(args: argparse.Namespace, start, loads, params, machine: str):
         params=params,
         max_evaluations=args.evaluations,
         machine=machine,
+        progress=not args.no_progress,
     )
     for name, totals in (
         ("Table 3", table3),
