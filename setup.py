@@ -9,7 +9,12 @@ from setuptools import find_packages, setup
 
 GENERATED = "loader_model_generated"
 
-packages = find_packages(include=["loader_model", "loader_model.*", "derive", "derive.*"])
-packages += [GENERATED, *(f"{GENERATED}.{name}" for name in find_packages("generated"))]
 
-setup(packages=packages, package_dir={GENERATED: "generated"})
+def packages() -> list[str]:
+    """Every package of loader_model and derive, and generated/ as loader_model_generated."""
+    found = find_packages(include=["loader_model", "loader_model.*", "derive", "derive.*"])
+    return [*found, GENERATED, *(f"{GENERATED}.{name}" for name in find_packages("generated"))]
+
+
+if __name__ == "__main__":  # run by the build backend (and `python setup.py`)
+    setup(packages=packages(), package_dir={GENERATED: "generated"})
