@@ -6,8 +6,9 @@ that ``loader-model --help`` stays fast. The help is plain text: the modules' do
 their reST markup, and every option's default is shown once, as "(default: X)".
 
 Exit codes (the command page of the guide lists them): 0 success; 2 a usage error or bad input,
-with a one-line message; 3 a simulation stopped outside the model's range of validity;
-128 + N an interrupt by signal N (130 Ctrl-C, 143 SIGTERM); 1 an unexpected failure.
+with a one-line message; 3 a simulation stopped outside the model's range of validity; 4 a
+design that fails its check (check-design, design); 128 + N an interrupt by signal N (130 Ctrl-C,
+143 SIGTERM); 1 an unexpected failure.
 """
 
 from __future__ import annotations
@@ -37,6 +38,7 @@ COMMANDS: dict[str, str] = {
     "simulate": "loader_model.commands.simulate_command",
     "export-fmu": "loader_model.commands.export_fmu_command",
     "design": "loader_model.commands.design_command",
+    "check-design": "loader_model.commands.check_design_command",
     "robustness": "loader_model.commands.robustness_command",
     "bound": "loader_model.commands.bound_command",
     "fidelity": "loader_model.commands.fidelity_command",

@@ -5,7 +5,11 @@ from __future__ import annotations
 
 import argparse
 
-from loader_model.commands.common import add_machine_argument, add_progress_argument
+from loader_model.commands.common import (
+    add_jobs_argument,
+    add_machine_argument,
+    add_progress_argument,
+)
 
 HELP = "design the skyhook gains K_fb (LQR or ISO 2631 optimisation); Fig. 12"
 GUIDE = "controllers.md"  # its page of the user guide (docs/guide/)
@@ -31,10 +35,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument(
         "--method",
-        choices=("lqr", "optimise", "refine"),
+        choices=("lqr", "optimise", "refine", "machine"),
         default="optimise",
         help="lqr: output-feedback LQR (Eq. 41, 42); optimise: ISO 2631 a_total on the linear "
-        "plant; refine: optimise, then refine on the nonlinear paper course at --speed",
+        "plant; machine: optimise, then minimise a_total relative to the baseline on "
+        "the nonlinear machine over both loads, boards at 9 and 18 km/h and an ISO 8608 class C "
+        "road at 15 km/h, with exact gradients and the design check's criteria as constraints; "
+        "refine: optimise, then a derivative-free (Nelder-Mead) refinement on the paper course "
+        "at --speed",
     )
     parser.add_argument(
         "--solver",
@@ -42,6 +50,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         default="bfgs",
         help="optimise/refine: bfgs: certified BFGS with adjoint gradients; ipopt: "
         "IPOPT through CasADi on the same cost (every iterate stable, same optimum)",
+    )
+    parser.add_argument(
+        "--iterations",
+        type=int,
+        default=12,
+        metavar="N",
+        help="machine: quasi-Newton steps at most (default: 12)",
     )
     parser.add_argument(
         "--evaluations",
@@ -61,8 +76,28 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="FILE.toml",
         default=None,
         help="write a controller settings file with the designed gains "
-        "(for loader-model simulate --controller FILE.toml)",
+        "(for loader-model simulate --controller FILE.toml); only when they pass the design "
+        "check, unless --force",
     )
+    parser.add_argument(
+        "--envelope",
+        metavar="FILE.toml",
+        default=None,
+        help="conditions and criteria of the design check (default: the default envelope, "
+        "see loader-model check-design --help)",
+    )
+    parser.add_argument(
+        "--force",
+        action="store_true",
+        help="write the gains even when they fail the design check (the file says so)",
+    )
+    parser.add_argument(
+        "--no-check",
+        action="store_true",
+        help="skip the design check on the nonlinear machine (nothing is written without it "
+        "unless --force)",
+    )
+    add_jobs_argument(parser, 2, "of the design check and the machine method")
     add_progress_argument(parser)
 
 
@@ -115,6 +150,36 @@ def _refine(args: argparse.Namespace, start, loads, params, machine: str):
     return result["gain"], note
 
 
+def _on_machine(args: argparse.Namespace, start, machine: str):
+    """Optimise ``start`` on the nonlinear machine; print the scenarios beside the baseline."""
+    from loader_model.experiments.machine_design import design_on_machine
+
+    if args.iterations < 1:
+        raise ValueError(f"--iterations {args.iterations}: allowed: an integer >= 1")
+    print("Optimising on the nonlinear machine (exact gradients; relative to the baseline):")
+    result = design_on_machine(
+        start,
+        machine=machine,
+        params=args.params,
+        margin=args.margin,
+        max_iterations=args.iterations,
+        progress=not args.no_progress,
+    )
+    for label, value in result.a_total.items():
+        base = result.baseline[label]
+        print(
+            f"  {label:<26} a_total {value:.3f} m/s², baseline {base:.3f} ({value / base - 1:+.1%})"
+        )
+    gains = " ".join(f"{g:8.3f}" for g in result.gain.ravel())
+    print(
+        f"  gains [{gains}]  J {result.start_cost:.4f} -> {result.cost:.4f} in "
+        f"{result.iterations} steps, {result.simulations} runs with sensitivities, "
+        f"{result.rejected} candidates rejected by a constraint, {result.wall_s:.0f} s"
+    )
+    note = f"; J {result.start_cost:.4f} -> {result.cost:.4f} over {len(result.a_total)} scenarios"
+    return result.gain, note
+
+
 def run(args: argparse.Namespace) -> int:
     """Design, print gains / costs / poles / margins, write the figure atomically; an interrupt
     (Ctrl-C, SIGTERM) says which of the files were written."""
@@ -143,6 +208,18 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
         raise ValueError(f"--speed {args.speed:g} with --method refine: allowed: 9 or 18 km/h")
     if args.evaluations < 1:
         raise ValueError(f"--evaluations {args.evaluations}: allowed: an integer >= 1")
+    if args.jobs < 1:
+        raise ValueError(f"--jobs {args.jobs}: allowed: an integer >= 1")
+    if args.no_check and args.output is not None and not args.force:
+        raise ValueError(
+            "--output with --no-check: gains are written only after the design check; drop "
+            "--no-check, or add --force to write unchecked gains"
+        )
+    envelope = None
+    if not args.no_check:
+        from loader_model.experiments.design_check import DEFAULT_ENVELOPE, load_envelope
+
+        envelope = DEFAULT_ENVELOPE if args.envelope is None else load_envelope(args.envelope)
     from loader_model.machines import resolve_machine_name
 
     machine = resolve_machine_name(getattr(args, "machine", "skid_steer"))
@@ -171,7 +248,7 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
     every = comfort_plants(("empty", "full"), args.road, args.speed, params)
     design = [p for p in every if p.name in loads]
     lqr = design_gains(design, "lqr").gains
-    if args.method in ("optimise", "refine"):
+    if args.method in ("optimise", "refine", "machine"):
         optimised = design_gains(design, "optimise", margin=args.margin, solver=args.solver)
         designed, label, note = optimised.gain, "optimised (ISO 2631)", optimised.summary
     else:
@@ -189,7 +266,7 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
         ("Table 3 printed (−0.22)", TABLE3_PRINTED_GAIN),
     ]
     rows += [(f"LQR ({name})", gain) for name, gain in lqr.items()]
-    if designed is not None and args.method in ("optimise", "refine"):
+    if designed is not None and args.method in ("optimise", "refine", "machine"):
         rows.append((label, designed))
     for name, gain in rows:
         print(_row(name, gain, evaluate_gain(every, gain)))
@@ -197,6 +274,9 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
     if args.method == "refine":
         designed, course_note = _refine(args, designed, loads, params, machine)
         label = "refined on the course"
+    if args.method == "machine":
+        designed, course_note = _on_machine(args, designed, machine)
+        label = "designed on the machine"
     final = designed if designed is not None else next(iter(lqr.values()))
     print(
         "Closed loop with the designed gains (margin over all poles incl. the fixed road and"
@@ -215,15 +295,12 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
             f"σ_Vp {e.v_p_rms * 1e6:.3f} cm³/rev, σ_pA {e.p_a_rms / 1e5:.2f} bar, "
             f"within limits: {e.within_limits}\n    {listed}"
         )
-    if args.output is not None:
+    settings = _designed_settings(final, machine)
+    verdict, code = _check(args, settings, machine, envelope)
+    if args.output is not None and (code == 0 or args.force):
         import datetime
 
-        from loader_model.control.settings import (
-            default_settings,
-            save_settings,
-            with_gains,
-            with_scaled_gains,
-        )
+        from loader_model.control.settings import save_settings
 
         source = (
             f"loader-model design --method {args.method}"
@@ -231,17 +308,18 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
             f"{args.road.upper()} --speed {args.speed:g} --margin {args.margin:g}"
             f"{'' if machine == 'skid_steer' else f' --machine {machine}'}"
             f"{'' if args.params is None else f' --params {args.params}'}"
-            f"{f' --evaluations {args.evaluations}' if args.method == 'refine' else ''} "
-            f"on {datetime.date.today().isoformat()}{course_note}"
+            f"{f' --evaluations {args.evaluations}' if args.method == 'refine' else ''}"
+            f"{f' --iterations {args.iterations}' if args.method == 'machine' else ''} "
+            f"on {datetime.date.today().isoformat()}{course_note}; {verdict}"
         )
-        scaled = with_scaled_gains if machine != "skid_steer" else with_gains
-        save_settings(
-            scaled(default_settings(), final, source),
-            args.output,
-            header="Controller settings with designed skyhook gains (loader-model design).",
-        )
+        header = "Controller settings with designed skyhook gains (loader-model design)."
+        if code != 0:
+            header += " WRITTEN WITH --force: " + verdict
+        save_settings(_designed_settings(final, machine, source), args.output, header=header)
         written.append(args.output)
         print(f"wrote {args.output}")
+    elif args.output is not None:
+        print(f"not written: {args.output} (the gains fail the design check; --force writes them)")
     if args.plot is not None:
         from loader_model.control.comfort_figure import pitch_responses, plot_pitch_responses
 
@@ -261,4 +339,37 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
         )
         written.append(args.plot)
         print(f"wrote {args.plot}")
-    return 0
+    return code
+
+
+def _designed_settings(gain, machine: str, source: str = "loader-model design"):
+    """The shipped settings with the designed gains (norms scaled for another machine)."""
+    from loader_model.control.settings import default_settings, with_gains, with_scaled_gains
+
+    scaled = with_scaled_gains if machine != "skid_steer" else with_gains
+    return scaled(default_settings(), gain, source)
+
+
+def _check(args: argparse.Namespace, settings, machine: str, envelope) -> tuple[str, int]:
+    """Run the design check (unless --no-check) on ``settings``, print it; (verdict, code)."""
+    from loader_model.commands.check_design_command import EXIT_CHECK_FAILED
+
+    if envelope is None:
+        print("Design check skipped (--no-check): not checked on the nonlinear machine")
+        return "not checked on the nonlinear machine", 0
+    from loader_model.experiments.design_check import Design, check_design
+    from loader_model.experiments.design_check.report import check_text
+
+    print("Checking the designed gains on the nonlinear machine:")
+    check = check_design(
+        Design(settings, "skyhook", machine, args.params),
+        envelope,
+        jobs=args.jobs,
+        progress=not args.no_progress,
+    )
+    print(check_text(check))
+    judged = sum(c.judged for c in check.conditions)
+    if check.passed:
+        return f"passed its design check ({judged} conditions, {envelope.source})", 0
+    reasons = "; ".join(check.failures)
+    return f"FAILED its design check ({envelope.source}): {reasons}", EXIT_CHECK_FAILED

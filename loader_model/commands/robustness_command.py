@@ -4,11 +4,15 @@ and bucket loads, from a study file (TOML; the guide's page docs/guide/robustnes
 
 Writes into the results folder: ``parts/`` (one Parquet file per finished batch; a rerun resumes
 from them), ``results.parquet`` and ``results.csv`` (one row per sample and controller),
-``gains.json`` (the K_fb each gain-based controller ran with) and ``report.md`` (change of a_total
-per controller, probability of worse comfort, worst cases, Spearman rank correlations, stability
-margin of the gains, failures). The study file is checked completely before anything runs or is
-written. An interrupt (Ctrl-C, SIGTERM) stops the workers at once and says how many samples are
-saved; rerunning the same command resumes.
+``gains.json`` (the K_fb each gain-based controller ran with) and ``report.md`` (per controller:
+how many samples fell in each category of :mod:`~loader_model.robustness.outcomes` (evaluated,
+unstable on the linearised plant, diverged, outside the model's validity, failed, persistent
+oscillation, pump saturated, no baseline), the probability of worse comfort over all samples with
+every failure counted as worse and among the evaluated ones, the change of a_total over the
+evaluated samples, worst cases, Spearman rank correlations, stability margin of the gains).
+The study file is checked completely before anything runs or is written. An interrupt (Ctrl-C,
+SIGTERM) stops the workers at once and says how many samples are saved; rerunning the same
+command resumes.
 """
 
 from __future__ import annotations

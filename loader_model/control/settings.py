@@ -35,6 +35,7 @@ __all__ = [
     "SETTINGS_NAMES",
     "ControllerSettings",
     "default_settings",
+    "gain_norm_factors",
     "load_settings",
     "save_settings",
     "settings_vector",
@@ -186,6 +187,21 @@ def with_scaled_gains(
                 "source": f"{source}: scaled by {factor:.6g} with its gains (same control law)",
             }
     return with_gains(_parse(dumps(raw), "scaled norms"), gains, source)
+
+
+def gain_norm_factors(settings: ControllerSettings) -> np.ndarray:
+    """Per gain k_fb, the factor c by which ``settings`` scaled its norm against the shipped
+    settings (:func:`with_scaled_gains`): its gains are c K for the raw gains K on the shipped
+    norms (1 where a norm was not scaled)."""
+    shipped = default_settings()
+    factors = np.ones(4)
+    for name, members in (
+        ("linear_acceleration_norm", (0, 1)),
+        ("angular_acceleration_norm", (2,)),
+        ("angle_norm", (3,)),
+    ):
+        factors[list(members)] = getattr(settings, name) / getattr(shipped, name)
+    return factors
 
 
 def save_settings(settings: ControllerSettings, path: str | Path, header: str = "") -> None:

@@ -1,10 +1,11 @@
-"""Robustness study (issue 14): ride control over sampled plants, roads, speeds and bucket loads.
+"""Robustness study: ride control over sampled plants, roads, speeds and bucket loads.
 
 A study file (TOML, :mod:`~loader_model.robustness.study`) names the uncertain parameters by
 their parameter-file paths with bounded distributions; :func:`run_study` runs every controller on
 every sample on a local process pool or a Dask cluster, saving each finished batch
-(:mod:`~loader_model.robustness.engine`); :func:`report_text` summarises the result table
-(:mod:`~loader_model.robustness.report`). Command: ``loader-model robustness STUDY.toml``.
+(:mod:`~loader_model.robustness.engine`); every run gets a category, evaluated or why it is not
+counted (:mod:`~loader_model.robustness.outcomes`); :func:`report_text` summarises the result
+table (:mod:`~loader_model.robustness.report`). Command: ``loader-model robustness STUDY.toml``.
 """
 
 from __future__ import annotations

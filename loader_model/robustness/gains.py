@@ -13,9 +13,11 @@ Gains are resolved once, in the process that plans the study, and travel to the 
 Design plants (:func:`~loader_model.control.comfort_design.comfort_plants`): ISO 8608 road of the
 study's class at its first nominal speed. The stability margin of a gain on a sample is the largest
 real part of the closed-loop poles of the plant and skyhook (the design plant's loop poles: the
-sampled plant linearised at its static equilibrium); positive means unstable.
+sampled plant linearised at its static equilibrium); positive means unstable, and the sample's run
+of that gain is then in the ``"unstable"`` category (:mod:`~loader_model.robustness.outcomes`),
+never among the evaluated ones.
 
-Another machine (``[study] machine``, issue 23): the same methods on its comfort plants, built
+Another machine (``[study] machine``): the same methods on its comfort plants, built
 from its shipped flat parameter file (nominal) or from the sample's parameters
 (:func:`~loader_model.robustness.machine_study.machine_sample_plant`, robust). Its gains, like
 those of ``design --machine``, may exceed a settings file's ±100; the study hands them to the

@@ -1,20 +1,25 @@
-"""The study's report: how much each controller helps, how often it hurts, and what matters.
+"""The study's report: how much each controller helps, how often it hurts or fails, what matters.
 
-From the result table (:mod:`~loader_model.robustness.table`), per controller against the same
-sample's baseline:
+Every run has a category (:mod:`~loader_model.robustness.outcomes`): ``"evaluated"``, or why it is
+not counted: unstable on the linearised plant, diverged, stopped outside the model's validity,
+failed otherwise, a persistent oscillation after the road, the pump at its limit for much of the
+run, or no baseline to compare with. Per controller against the same sample's baseline:
 
-- the distribution of the a_total change in % (Eq. 50): mean, 5 %, 50 % and 95 % quantiles;
-- the probability that the controller makes comfort worse (change > 0), with a 95 % Wilson
-  interval over the samples;
-- the worst cases (largest change) with their conditions;
-- sensitivity: Spearman rank correlation (``scipy.stats.spearmanr``) of the change with every
-  input that varies (uncertain parameters, driven speed, bucket load as 0 empty / 1 full); a
-  global, monotone measure that needs no special design (Sobol indices would need a Saltelli
-  design of N (d + 2) samples);
+- how many samples fell in each category;
+- the probability of worse comfort over every sample (but those without a baseline), **each
+  failure counted as worse**, and among the evaluated samples only (change > 0), each with a
+  95 % Wilson interval;
+- the distribution of the a_total change in % (Eq. 50) over the evaluated samples only: mean,
+  5 %, 50 % and 95 % quantiles (a failed or unstable run's a_total is no improvement);
+- the worst evaluated cases (largest change) with their conditions;
+- sensitivity over the evaluated samples: Spearman rank correlation (``scipy.stats.spearmanr``) of
+  the change with every input that varies (uncertain parameters, driven speed, bucket load as
+  0 empty / 1 full); a global, monotone measure that needs no special design (Sobol indices
+  would need a Saltelli design of N (d + 2) samples);
 - the gains' stability margin: the largest real part of the plant-and-skyhook poles per sample
-  (positive: the linearised closed loop is unstable) and the share of unstable samples;
-- the pump's time at its displacement limit and the highest piston-side pressure;
-- the failures and their reasons.
+  (positive: the linearised closed loop is unstable);
+- the pump's time at its displacement limit and the highest piston-side pressure (runs that ran);
+- the failures' reasons.
 """
 
 from __future__ import annotations
@@ -25,6 +30,14 @@ from typing import Any
 
 import numpy as np
 
+from loader_model.robustness.outcomes import (
+    CATEGORIES,
+    FAILURES,
+    SATURATION_DUTY_LIMIT,
+    SETTLE_WINDOW_S,
+    UNSTABLE_POLE_REAL,
+    categorise,
+)
 from loader_model.robustness.study import Study
 
 __all__ = ["controller_summary", "report_text", "wilson_interval"]
@@ -53,36 +66,78 @@ def _finite(values: list) -> np.ndarray:
     return array[np.isfinite(array)]
 
 
+def _categorised(study: Study, table: Any) -> list[dict[str, Any]]:
+    """The table's rows with their ``category`` (computed if the table has none)."""
+    rows = table.to_pylist()
+    if rows and all(r.get("category") for r in rows):
+        return rows
+    categories = categorise(rows, study.duration_s)
+    return [r | {"category": c} for r, c in zip(rows, categories, strict=True)]
+
+
 def controller_summary(study: Study, table: Any, controller: str) -> dict[str, Any]:
-    """Statistics of one controller against the baseline (module notes) as a dict."""
+    """Statistics of one controller against the baseline (module notes) as a dict.
+
+    ``counts``: samples per category (every one of
+    :data:`~loader_model.robustness.outcomes.CATEGORIES`); ``p_worse_all``: worse or failed
+    over the samples except ``"no-baseline"`` ones (``compared``); ``p_worse``: worse among the
+    ``evaluated``.
+    """
     from scipy.stats import spearmanr
 
-    rows = [r for r in table.to_pylist() if r["controller"] == controller]
-    ok = [r for r in rows if not r["failed"] and math.isfinite(r["change_percent"])]
+    rows = [r for r in _categorised(study, table) if r["controller"] == controller]
+    counts = Counter({category: 0 for category in CATEGORIES})
+    counts.update(r["category"] for r in rows)
+    ok = [r for r in rows if r["category"] == "evaluated" and math.isfinite(r["change_percent"])]
     change = np.array([r["change_percent"] for r in ok])
     worse = int(np.sum(change > 0))
+    failures = sum(counts[c] for c in FAILURES)
+    compared = len(rows) - counts["no-baseline"]
     sensitivity = {}
-    if len(ok) >= 3:
+    if len(ok) >= 3 and np.ptp(change) > 0:  # a constant change has no rank correlation
         for name, values in _inputs(study, ok).items():
             if np.ptp(values) > 0:
                 sensitivity[name] = float(spearmanr(values, change).statistic)
     poles = np.array([r["max_pole_real"] for r in rows], dtype=float)
     poles = poles[np.isfinite(poles)]
+    ran = [r for r in rows if not r["failed"]]
     return {
         "controller": controller,
         "samples": len(rows),
+        "counts": counts,
         "evaluated": len(ok),
+        "compared": compared,
+        "failures": failures,
         "failed": sum(r["failed"] for r in rows),
         "reasons": Counter(r["reason"].split(";")[0][:120] for r in rows if r["failed"]),
+        "settle_not_assessed": len(ran) - _finite([r.get("settle_ratio") for r in ran]).size,
         "change": change,
         "p_worse": worse / len(ok) if ok else math.nan,
         "p_worse_interval": wilson_interval(worse, len(ok)),
+        "p_worse_all": (worse + failures) / compared if compared else math.nan,
+        "p_worse_all_interval": wilson_interval(worse + failures, compared),
         "worst": sorted(ok, key=lambda r: -r["change_percent"])[:3],
         "sensitivity": dict(sorted(sensitivity.items(), key=lambda kv: -abs(kv[1]))),
         "max_pole_real": poles,
-        "pump_saturation_s": _finite([r["pump_saturation_s"] for r in ok]),
-        "p_A_max_Pa": _finite([r["p_A_max_Pa"] for r in ok]),
+        "pump_saturation_s": _finite([r["pump_saturation_s"] for r in ran]),
+        "p_A_max_Pa": _finite([r["p_A_max_Pa"] for r in ran]),
     }
+
+
+_LABELS = {
+    "evaluated": "evaluated",
+    "unstable": "unstable on the linearised plant",
+    "diverged": "diverged",
+    "outside-validity": "stopped outside the model's validity",
+    "failed": "failed otherwise",
+    "persistent-oscillation": "persistent oscillation after the road",
+    "pump-saturated": f"pump at its limit for more than {100 * SATURATION_DUTY_LIMIT:g} % of the run",
+    "no-baseline": "no baseline to compare with",
+}
+
+
+def _counts(counts: Counter) -> str:
+    return ", ".join(f"{counts[c]} {_LABELS[c]}" for c in CATEGORIES)
 
 
 def _quantiles(values: np.ndarray) -> str:
@@ -120,21 +175,46 @@ def report_text(study: Study, table: Any, gains: dict | None = None) -> str:
         f"{', '.join(p for p, _ in study.parameters) or 'nothing'}.",
         "Change of a_total (ISO 2631-1, Eq. 50) against the same sample's baseline.",
     ]
-    base = [r for r in table.to_pylist() if r["controller"] == "baseline"]
-    failed_base = sum(r["failed"] for r in base)
-    lines.append(f"Baseline runs failed: {failed_base} of {len(base)}.")
+    base = [r for r in _categorised(study, table) if r["controller"] == "baseline"]
+    base_counts = Counter(r["category"] for r in base)
+    lines.append(
+        f"Baseline runs: {len(base)}, "
+        + ", ".join(f"{base_counts[c]} {_LABELS[c]}" for c in CATEGORIES if base_counts[c])
+        + "."
+    )
+    lines.append(
+        "A run is counted in the a_total statistics only if it is evaluated: a run unstable on "
+        "the linearised plant, diverged, stopped outside the model's validity, failed, "
+        "oscillating on after the road or with the pump at its limit for more than "
+        f"{100 * SATURATION_DUTY_LIMIT:g} % of the run is its own category and counts as worse comfort "
+        "in the probability over all samples."
+    )
     for controller in study.controllers[1:]:
         s = controller_summary(study, table, controller)
         low, high = s["p_worse_interval"]
+        all_low, all_high = s["p_worse_all_interval"]
+        no_baseline = s["counts"]["no-baseline"]
+        left_out = f"; {no_baseline} samples without a baseline left out" if no_baseline else ""
         lines += [
             "",
             f"## {controller}",
             "",
-            f"- change of a_total: {_quantiles(s['change'])} ({s['evaluated']} samples)",
-            f"- probability of worse comfort: {s['p_worse']:.3f} (95 % CI {low:.3f}-{high:.3f})",
+            f"- samples: {s['samples']}: {_counts(s['counts'])}",
+            f"- probability of worse comfort: {s['p_worse_all']:.3f} over all {s['compared']} "
+            f"samples, the {s['failures']} failures counted as worse (95 % CI "
+            f"{all_low:.3f}-{all_high:.3f}{left_out}); {s['p_worse']:.3f} among the "
+            f"{s['evaluated']} evaluated samples (95 % CI {low:.3f}-{high:.3f})",
+            f"- change of a_total over the evaluated samples: {_quantiles(s['change'])} "
+            f"({s['evaluated']} samples)",
             f"- failed runs: {s['failed']}"
             + "".join(f"\n  - {n} × {reason}" for reason, n in s["reasons"].most_common(3)),
         ]
+        if s["settle_not_assessed"]:
+            lines.append(
+                f"- decay after the road not assessed on {s['settle_not_assessed']} runs (they "
+                f"end less than {4 * SETTLE_WINDOW_S:g} s after the road's last excitation: "
+                "set a longer duration_s)"
+            )
         if s["pump_saturation_s"].size and s["p_A_max_Pa"].size:
             lines.append(
                 f"- pump at its limit on {np.mean(s['pump_saturation_s'] > 0):.1%} of the runs "
@@ -148,7 +228,7 @@ def report_text(study: Study, table: Any, gains: dict | None = None) -> str:
             lines.append(
                 f"- stability margin (max Re of the plant-and-skyhook poles, rad/s): median "
                 f"{np.median(poles):+.4f}, worst {poles.max():+.4f}; unstable on "
-                f"{np.mean(poles > 0):.1%} of the samples"
+                f"{np.mean(poles > UNSTABLE_POLE_REAL):.1%} of the samples"
             )
         if s["sensitivity"]:
             ranked = ", ".join(f"{k} {v:+.2f}" for k, v in list(s["sensitivity"].items())[:5])

@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from loader_model.robustness.gains import Gains, max_pole_real
+from loader_model.robustness.outcomes import settle_ratio
 from loader_model.robustness.sampling import SampleSpec, sample_plant
 from loader_model.robustness.sensors import (
     corrupted_fixed_point,
@@ -85,6 +86,8 @@ def _metrics(result: Any, max_displacement: float) -> dict[str, float]:
         "p_B_max_Pa": float(np.max(result["p_B"])),
         "pump_saturation_s": float(saturated),
         "tyre_lift_offs": float(sum(e.kind == "tyre_off_ground" for e in result.events)),
+        # decay after the road's excitation, for the persistent-oscillation category
+        "settle_ratio": settle_ratio(result),
     }
 
 
@@ -92,7 +95,7 @@ _EMPTY = dict.fromkeys(
     [
         *(f"a_w_{a}" for a in AXES),
         *("a_total", "p_A_max_Pa", "p_A_min_Pa", "p_B_max_Pa"),
-        *("pump_saturation_s", "tyre_lift_offs"),
+        *("pump_saturation_s", "tyre_lift_offs", "settle_ratio"),
     ],
     math.nan,
 )

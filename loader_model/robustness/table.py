@@ -7,7 +7,10 @@ its parameter-file path (SI units), the seat's ISO 2631-1 weighted r.m.s. per ax
 ``change_percent`` (a_total against the same sample's baseline), peak pressures ``p_A_max_Pa``,
 ``p_A_min_Pa``, ``p_B_max_Pa`` (gauge), ``pump_saturation_s`` (time with |V_p,ref| at or beyond V_p,max),
 ``tyre_lift_offs``, ``max_pole_real`` (largest real part of the plant-and-skyhook poles of the
-gain, rad/s; NaN for controllers without K_fb), ``failed`` and ``reason``.
+gain, rad/s; NaN for controllers without K_fb), ``settle_ratio`` (pitch motion left at the run's
+end after the road's excitation, :func:`~loader_model.robustness.outcomes.settle_ratio`; NaN if
+not assessed), ``failed``, ``reason`` and ``category`` (``"evaluated"`` or why the run is not
+counted: :mod:`~loader_model.robustness.outcomes`).
 """
 
 from __future__ import annotations
@@ -31,6 +34,7 @@ _METRICS = (
     "pump_saturation_s",
     "tyre_lift_offs",
     "max_pole_real",
+    "settle_ratio",
 )
 
 
@@ -49,6 +53,7 @@ def result_schema(study: Study) -> Any:
         *((name, pa.float64()) for name in _METRICS),
         ("failed", pa.bool_()),
         ("reason", pa.string()),
+        ("category", pa.string()),
     ]
     return pa.schema(fields)
 
@@ -58,12 +63,17 @@ def write_part(folder: Path, study: Study, first: int, rows: list[dict[str, Any]
 
     The temporary files killed runs left in ``parts`` are not looked for here (that would list the
     folder once per part): :func:`~loader_model.robustness.engine.run_study` removes them once.
+    Each row gets its ``category`` (:func:`~loader_model.robustness.outcomes.categorise`; a batch
+    holds every controller of its samples).
     """
     import pyarrow as pa
     import pyarrow.parquet as pq
 
     from loader_model.io.export import write_atomically
+    from loader_model.robustness.outcomes import categorise
 
+    categories = categorise(rows, study.duration_s)
+    rows = [row | {"category": c} for row, c in zip(rows, categories, strict=True)]
     table = pa.Table.from_pylist(rows, schema=result_schema(study))
     path = folder / "parts" / f"part-{first:08d}.parquet"
     return write_atomically(
@@ -91,12 +101,14 @@ def read_parts(folder: Path, study: Study) -> set[int]:
 
 def combine_parts(folder: Path, study: Study) -> Any:
     """Combine the part files, sorted by sample then controller, into ``results.parquet`` and
-    ``results.csv`` in ``folder``; return the table."""
+    ``results.csv`` in ``folder``; return the table. Parts written before the ``category`` and
+    ``settle_ratio`` columns existed are read with them empty, and their rows categorised here."""
     import pyarrow as pa
     import pyarrow.csv as csv
     import pyarrow.parquet as pq
 
     from loader_model.io.export import write_atomically
+    from loader_model.robustness.outcomes import categorise
 
     schema = result_schema(study)
     parts = [pq.read_table(path, schema=schema) for path in _part_files(folder)]
@@ -104,6 +116,9 @@ def combine_parts(folder: Path, study: Study) -> Any:
     rank = {name: i for i, name in enumerate(study.controllers)}
     rows = table.to_pylist()
     rows.sort(key=lambda row: (row["sample"], rank.get(row["controller"], len(rank))))
+    if any(row["category"] is None for row in rows):  # parts written before the column existed
+        categories = categorise(rows, study.duration_s)
+        rows = [row | {"category": c} for row, c in zip(rows, categories, strict=True)]
     table = pa.Table.from_pylist(rows, schema=schema)
     write_atomically(
         folder / "results.parquet",

@@ -41,6 +41,8 @@ __all__ = [
     "PAPER_BOARD_COUNT",
     "PAPER_SPACING_M",
     "Course",
+    "board_spacing_m",
+    "boards_at_speed",
     "iso8608_course",
     "kmh_to_m_s",
     "paper_course",
@@ -167,6 +169,51 @@ def paper_course(
         position_jitter_m=position_jitter_m,
         seed=seed,
         name=f"paper course, {speed_kmh:g} km/h: 5 boards 40 mm, {spacing_m:g} m apart",
+    )
+    settle_s = as_number(settle_s, "settle_s", "s", minimum=0.0, maximum=60.0)
+    return Course(profile, kmh_to_m_s(speed_kmh), -LEAD_IN_M, settle_s, profile.name)
+
+
+def board_spacing_m(speed_kmh: float) -> float:
+    """The paper's board spacing rule extended to any speed: 6 m at 9 km/h and 9 m at 18 km/h
+    (section 5.3), linear in the speed between and beyond, 3 m + speed / (3 km/h) m, so the
+    boards pass the axles 2.4 s apart at 9 km/h and 1.8 s apart at 18 km/h."""
+    speed_kmh = as_number(speed_kmh, "speed_kmh", "km/h", minimum=0.0, maximum=100.0)
+    return 3.0 + speed_kmh / 3.0
+
+
+def boards_at_speed(
+    speed_kmh: float,
+    *,
+    position_jitter_m: float = 0.0,
+    seed: int = 0,
+    settle_s: float = 3.0,
+) -> Course:
+    """The paper's five 40 mm boards (section 5.3) at any speed, spaced by
+    :func:`board_spacing_m`; at 9 and 18 km/h the same course as :func:`paper_course`.
+
+    Parameters
+    ----------
+    speed_kmh : float
+        Driven speed in km/h, (0, 100].
+    position_jitter_m, seed : float, int
+        Standard deviation in m of a seeded normal shift of each board (boards laid by hand).
+    settle_s : float
+        Seconds driven after the rear axle has left the last board, [0, 60].
+    """
+    speed_kmh = as_number(
+        speed_kmh, "speed_kmh", "km/h", minimum=0.0, maximum=100.0, strict_minimum=True
+    )
+    spacing_m = board_spacing_m(speed_kmh)
+    profile = board_course(
+        PAPER_BOARD_COUNT,
+        height_m=BOARD_HEIGHT_M,
+        width_m=BOARD_WIDTH_M,
+        spacing_m=spacing_m,
+        first_board_m=0.0,
+        position_jitter_m=position_jitter_m,
+        seed=seed,
+        name=f"5 boards 40 mm, {spacing_m:g} m apart, at {speed_kmh:g} km/h",
     )
     settle_s = as_number(settle_s, "settle_s", "s", minimum=0.0, maximum=60.0)
     return Course(profile, kmh_to_m_s(speed_kmh), -LEAD_IN_M, settle_s, profile.name)

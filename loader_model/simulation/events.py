@@ -5,7 +5,13 @@
 - ``tyre_off_ground``: a vertical tyre load F_Ay or F_By exactly 0 (the contact law's lift-off)
   for at least ``airborne_min_s``.
 - ``end_stop``: the piston position outside [0, stroke].
-- ``pump_saturation``: the command |V_p,ref| above the pump's V_p,max (the plant saturates it).
+- ``pump_saturation``: the command |V_p,ref| at or above the pump's V_p,max (the controller clips
+  at exactly V_p,max, so "at" counts: :data:`~loader_model.simulation.settling.COMMAND_AT_LIMIT`).
+- ``pump_rate_limit``: the displacement rate |V̇_p| within the plant's saturation band of the rate
+  limit V̇_p,max (:data:`~loader_model.simulation.settling.RATE_AT_LIMIT`).
+- ``persistent_oscillation``: the chassis pitch acceleration does not decay after the road and the
+  disturbance stop changing (:func:`~loader_model.simulation.settling.settle_measure`); from the
+  excitation's end to the run's end, its value the tail's r.m.s. [rad/s²].
 """
 
 from __future__ import annotations
@@ -16,6 +22,12 @@ import numpy as np
 
 from loader_model.plant.components import ATMOSPHERIC_PRESSURE_PA
 from loader_model.simulation.result import Event
+from loader_model.simulation.settling import (
+    COMMAND_AT_LIMIT,
+    RATE_AT_LIMIT,
+    SETTLE_SIGNAL,
+    settle_measure,
+)
 
 __all__ = ["DEFAULT_AIRBORNE_MIN_S", "find_events", "intervals"]
 
@@ -38,6 +50,7 @@ def find_events(
     max_displacement: float,
     airborne_min_s: float = DEFAULT_AIRBORNE_MIN_S,
     axles: Sequence[str] = ("A", "B"),
+    max_rate: float | None = None,
 ) -> tuple[Event, ...]:
     """All events (module notes) in a run's columns, in order of their start.
 
@@ -47,7 +60,8 @@ def find_events(
         Sample times in s.
     columns : dict of str to numpy.ndarray
         Needs ``p_A``, ``p_B`` [Pa], ``F_<axle>y`` [N] of every axle, ``x_piston`` [m],
-        ``V_p_ref``.
+        ``V_p_ref``; ``Vd_p`` for ``max_rate``; :data:`~loader_model.simulation.settling.
+        SETTLE_SIGNAL` and the exogenous inputs for ``persistent_oscillation``.
     stroke_m, max_displacement : float
         Cylinder stroke in m and the pump's maximum displacement in m³/rev.
     airborne_min_s : float
@@ -55,6 +69,9 @@ def find_events(
     axles : sequence of str
         The machine's axles, front first (default the skid-steer's A, B): a lift-off event per
         axle.
+    max_rate : float, optional
+        The pump's displacement rate limit in m³/(rev·s): ``pump_rate_limit`` events (none if
+        not given).
     """
     found: list[Event] = []
 
@@ -81,7 +98,27 @@ def find_events(
     add("end_stop", "x_piston", piston < 0.0, np.min)
     add("end_stop", "x_piston", piston > stroke_m, np.max)
     command = columns["V_p_ref"]
-    add("pump_saturation", "V_p_ref", np.abs(command) > max_displacement, _extreme)
+    add(
+        "pump_saturation",
+        "V_p_ref",
+        np.abs(command) >= COMMAND_AT_LIMIT * max_displacement,
+        _extreme,
+    )
+    if max_rate is not None and "Vd_p" in columns:
+        rate = columns["Vd_p"]
+        add("pump_rate_limit", "Vd_p", np.abs(rate) >= RATE_AT_LIMIT * max_rate, _extreme)
+    if SETTLE_SIGNAL in columns and time_s.size > 1:
+        settle = settle_measure(time_s, columns)
+        if settle.persistent:
+            found.append(
+                Event(
+                    "persistent_oscillation",
+                    SETTLE_SIGNAL,
+                    settle.excitation_end_s,
+                    float(time_s[-1]),
+                    settle.tail_rms,
+                )
+            )
     return tuple(sorted(found, key=lambda event: (event.start_s, event.kind, event.signal)))
 
 

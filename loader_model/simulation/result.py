@@ -123,7 +123,9 @@ class Event:
     ----------
     kind : str
         ``"cavitation"`` (absolute pressure below zero), ``"tyre_off_ground"``, ``"end_stop"``
-        (piston outside [0, stroke]), ``"pump_saturation"`` (|V_p,ref| above V_p,max) or
+        (piston outside [0, stroke]), ``"pump_saturation"`` (|V_p,ref| at V_p,max),
+        ``"pump_rate_limit"`` (|V̇_p| at its limit), ``"persistent_oscillation"`` (the motion
+        does not decay after the road, :mod:`~loader_model.simulation.settling`) or
         ``"validity"`` (where a stopped run left the model's range of validity,
         :mod:`~loader_model.simulation.validity`).
     signal : str

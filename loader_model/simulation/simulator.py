@@ -330,6 +330,7 @@ def simulate(
         max_displacement=scenario.plant.parameter("V_p_max"),
         airborne_min_s=airborne_min_s,
         axles=layout.machine.axles,
+        max_rate=scenario.plant.parameter("Vd_p_max"),
     )
     metadata = {
         "controller": controller.name(),

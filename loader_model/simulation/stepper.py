@@ -189,6 +189,7 @@ def ros2_period(
     substeps: int,
     sensitivities: bool = False,
     error_scales: np.ndarray | None = None,
+    seed: ca.SX | None = None,
 ) -> tuple[ca.SX, ca.SX | None, ca.SX | None, ca.SX | None]:
     r"""``substeps`` ROS2 steps of ``plant`` over one period with u held (module notes).
 
@@ -201,10 +202,13 @@ def ros2_period(
     They approximate ∂x(t + h)/∂(x, u) of the ODE to the method's order; the derivative of the
     discrete step itself also differentiates J and the second stage's f, which where a substep
     straddles a valve's opening band amplifies by up to 2.6e4 in one period (measured along the
-    paper course; ``loader_model.bound.trajectory``'s notes). Else (None, None).
+    paper course; ``loader_model.bound.trajectory``'s notes). Else (None, None). With a
+    ``seed`` ((nx + 1) × m directions in (δx, δu)) the same variational steps carry only those m
+    directions: A is the flow's derivative along them (nx × m) and B is None.
     """
     nx = x.shape[0]
     step = period_s / substeps
+    sensitivities = sensitivities or seed is not None
     xs, us, ws = ca.SX.sym("x", nx), ca.SX.sym("u"), ca.SX.sym("w", w0.shape[0])
     rate_s = plant(xs, us, ws, params)[0]
     outputs = [rate_s, ca.jacobian(rate_s, xs)]
@@ -213,13 +217,19 @@ def ros2_period(
     rate_and_jacobian = ca.Function("rate_and_jacobian", [xs, us, ws, params], outputs)
     state, error = x, None
     flow = ca.SX.eye(nx + 1)[:nx, :] if sensitivities else None  # (A | B), δ per unit (δx, δu)
+    if seed is not None:
+        flow = seed[:nx, :]
     for index in range(substeps):
         w_start = w0 + (w1 - w0) * (index / substeps)
         w_end = w0 + (w1 - w0) * ((index + 1) / substeps)
         rate, jacobian, *rest = rate_and_jacobian(state, u, w_start, params)
         solve = lu_solver(ca.SX.eye(nx) - _GAMMA * step * jacobian)
         if sensitivities:
-            forcing = ca.horzcat(ca.SX.zeros(nx, nx), rest[0])
+            forcing = (
+                rest[0] @ seed[nx, :]
+                if seed is not None
+                else ca.horzcat(ca.SX.zeros(nx, nx), rest[0])
+            )
             k1 = ca.horzcat(*(solve(c) for c in ca.horzsplit(jacobian @ flow + forcing)))
             second = jacobian @ (flow + step * k1) + forcing - 2.0 * k1
             k2 = ca.horzcat(*(solve(c) for c in ca.horzsplit(second)))
@@ -232,6 +242,8 @@ def ros2_period(
         state = state + 1.5 * step * k1 + 0.5 * step * k2
     if not sensitivities:
         return state, None, None, error
+    if seed is not None:
+        return state, flow, None, error
     return state, flow[:, :nx], flow[:, nx], error
 
 

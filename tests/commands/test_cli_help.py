@@ -10,6 +10,7 @@ import pytest
 
 import loader_model
 from loader_model.cli import COMMANDS, EXIT_OUTSIDE_VALIDITY, EXIT_USAGE, build_parser, main
+from loader_model.commands.check_design_command import EXIT_CHECK_FAILED
 
 GUIDE = Path(__file__).resolve().parents[2] / "docs" / "guide"
 
@@ -115,9 +116,9 @@ def test_bad_input_is_exit_code_2_with_one_line(capsys) -> None:
 
 
 def test_exit_codes_are_distinct_and_documented() -> None:
-    assert (EXIT_USAGE, EXIT_OUTSIDE_VALIDITY) == (2, 3)
+    assert (EXIT_USAGE, EXIT_OUTSIDE_VALIDITY, EXIT_CHECK_FAILED) == (2, 3, 4)
     page = (GUIDE / "commands.md").read_text(encoding="utf-8")
-    for code in (0, 1, EXIT_USAGE, EXIT_OUTSIDE_VALIDITY, 130, 143):
+    for code in (0, 1, EXIT_USAGE, EXIT_OUTSIDE_VALIDITY, EXIT_CHECK_FAILED, 130, 143):
         assert re.search(rf"^\| `{code}` \|", page, re.MULTILINE), code
 
 

@@ -11,8 +11,9 @@ from loader_model.cli import main
 
 def test_design_prints_gains_costs_and_writes_the_figure(tmp_path: Path, capsys) -> None:
     target = tmp_path / "fig12.png"
-    assert main(["design", "--plot", str(target)]) == 0
+    assert main(["design", "--plot", str(target), "--no-check"]) == 0
     out = capsys.readouterr().out
+    assert "not checked on the nonlinear machine" in out
     assert "Table 3 " in out and "unstable" in out and "LQR (empty)" in out
     assert "optimised (ISO 2631)" in out and "loop margin" in out
     assert target.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
@@ -41,8 +42,14 @@ def test_designed_gains_go_to_a_settings_file_that_simulate_runs(tmp_path: Path,
     from loader_model.control.settings import load_settings
 
     target = tmp_path / "designed.toml"
-    assert main(["design", "--load", "empty", "--solver", "ipopt", "--output", str(target)]) == 0
+    envelope = tmp_path / "envelope.toml"
+    envelope.write_text(
+        '[envelope]\nloads = ["full"]\nboard_speeds_kmh = [9.0]\nroad_classes = []\n'
+    )
+    argv = ["design", "--load", "empty", "--solver", "ipopt", "--output", str(target)]
+    assert main([*argv, "--envelope", str(envelope), "--no-progress"]) == 0
     out = capsys.readouterr().out
+    assert "full, boards 9 km/h" in out and "PASSED" in out
     settings = load_settings(target)
     printed = next(line for line in out.splitlines() if "optimised (ISO 2631) " in line)
     shown = [float(v) for v in printed.split("[")[1].split("]")[0].split()]
@@ -50,6 +57,7 @@ def test_designed_gains_go_to_a_settings_file_that_simulate_runs(tmp_path: Path,
     assert settings.source("k_fb").startswith(
         "loader-model design --method optimise --solver ipopt --load empty"
     )
+    assert "passed its design check (1 conditions, envelope file" in settings.source("k_fb")
     assert main(["simulate", "--controller", str(target), "--duration", "3"]) == 0
     assert f"{target} controller" in capsys.readouterr().out
 
@@ -57,3 +65,32 @@ def test_designed_gains_go_to_a_settings_file_that_simulate_runs(tmp_path: Path,
 def test_simulate_names_the_allowed_controllers(capsys) -> None:
     assert main(["simulate", "--controller", "skyhok", "--duration", "1"]) == 2
     assert "allowed: baseline, passive, virtual-accumulator, skyhook" in capsys.readouterr().err
+
+
+def test_gains_that_fail_the_check_are_not_written_unless_forced(tmp_path: Path, capsys) -> None:
+    """The linear comfort design of the empty bucket makes the 40 mm boards at 9 km/h worse than
+    the baseline on the nonlinear machine (the linear plant misjudges the boards): refused, the
+    condition named; with --force written, the file says it failed."""
+    from loader_model.control.settings import load_settings
+
+    target = tmp_path / "designed.toml"
+    envelope = tmp_path / "envelope.toml"
+    envelope.write_text(
+        '[envelope]\nloads = ["empty"]\nboard_speeds_kmh = [9.0]\nroad_classes = []\n'
+    )
+    argv = ["design", "--load", "empty", "--output", str(target), "--envelope", str(envelope)]
+    assert main([*argv, "--no-progress"]) == 4
+    out = capsys.readouterr().out
+    assert "FAILED" in out and "empty, boards 9 km/h: a_total" in out
+    assert f"not written: {target}" in out and not target.exists()
+    assert main([*argv, "--no-progress", "--force"]) == 4
+    header = target.read_text(encoding="utf-8").splitlines()[0]
+    assert "WRITTEN WITH --force: FAILED its design check" in header
+    assert "FAILED its design check" in load_settings(target).source("k_fb")
+
+
+def test_no_check_with_output_needs_force(tmp_path: Path, capsys) -> None:
+    target = tmp_path / "designed.toml"
+    assert main(["design", "--no-check", "--output", str(target)]) == 2
+    assert "--output with --no-check" in capsys.readouterr().err
+    assert not target.exists()

@@ -1,4 +1,4 @@
-"""A robustness study of another described machine (issue 23): the compact wheel loader."""
+"""A robustness study of another described machine: the compact wheel loader."""
 
 from __future__ import annotations
 

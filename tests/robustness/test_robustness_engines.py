@@ -1,4 +1,4 @@
-"""Robustness study engines (issue 14): identical tables on every engine, dead workers lose nothing.
+"""Robustness study engines: identical tables on every engine, dead workers lose nothing.
 
 Slow: each test runs real 3 s simulations on spawned worker processes or a Dask ``LocalCluster``
 (about 15-40 s each on the shared 2-core machine).

@@ -1,4 +1,4 @@
-"""Robustness study (issue 14): the study file's checks, the seeded samples, failures, resume."""
+"""Robustness study: the study file's checks, the seeded samples, failures, resume."""
 
 from __future__ import annotations
 
@@ -219,12 +219,16 @@ def test_report_counts_worse_runs_and_ranks_the_parameter_that_drives_them() -> 
     table = pa.Table.from_pylist(rows, schema=result_schema(study))
     summary = controller_summary(study, table, "virtual-accumulator")
     assert summary["evaluated"] == 9 and summary["failed"] == 1
+    assert summary["counts"]["diverged"] == 1 and summary["failures"] == 1
     assert summary["p_worse"] == pytest.approx(4 / 9, rel=1e-12)
+    assert summary["p_worse_all"] == pytest.approx(5 / 10, rel=1e-12)  # the failure is worse
     assert next(iter(summary["sensitivity"])) == "hydraulics.bulk_modulus"
     assert summary["sensitivity"]["hydraulics.bulk_modulus"] == pytest.approx(1.0, rel=1e-12)
     assert [r["sample"] for r in summary["worst"]] == [8, 7, 6]
     text = report_text(study, table, {"virtual-accumulator": {}})
-    assert "probability of worse comfort: 0.444" in text and "1 × SimulationError" in text
+    assert "probability of worse comfort: 0.500 over all 10 samples" in text
+    assert "0.444 among the 9 evaluated" in text and "1 × SimulationError" in text
+    assert "samples: 10: 9 evaluated, 0 unstable on the linearised plant, 1 diverged" in text
 
 
 def test_a_distribution_carries_its_source() -> None:

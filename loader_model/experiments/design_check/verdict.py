@@ -1,0 +1,154 @@
+"""The check's verdict: every condition judged against its baseline, and the loop's margins.
+
+A condition fails, and the verdict names it and why, when the design's run
+
+- was stopped by the simulator (outside the model's range of validity, or a failed solve) where
+  the baseline's was not;
+- has an a_total (Eq. 50) more than :attr:`~.Envelope.worse_than_baseline` above the baseline's;
+- has its pump command at V_p,max for more than :attr:`~.Envelope.command_duty` of the run, or
+  its displacement rate at its limit for more than :attr:`~.Envelope.rate_duty`;
+- does not come to rest after the road: a persistent oscillation
+  (:func:`~loader_model.simulation.settling.settle_measure`), or a residual pitch acceleration
+  at the end of the settle window above both the rest floor and
+  :attr:`~.Envelope.tail_factor` times the baseline's.
+
+A condition whose baseline the simulator stopped is not judged (the road is outside what the
+model covers for this machine) and is listed as such. The design fails as well when the loop's
+margin on a load's linearised plant is below :attr:`~.Envelope.margin_rad_s`, or when any
+sampled plant's loop is unstable.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from loader_model.experiments.design_check.envelope import Condition, Envelope
+from loader_model.experiments.design_check.margins import LinearMargin
+from loader_model.experiments.design_check.runs import Design, RunOutcome
+
+__all__ = ["ConditionCheck", "DesignCheck", "judge_condition"]
+
+
+@dataclass(frozen=True)
+class ConditionCheck:
+    """One condition's runs and what fails in it (module notes).
+
+    Attributes
+    ----------
+    condition : Condition
+        The load, road and speed.
+    runs : dict of str to RunOutcome
+        ``design``, ``baseline`` and ``passive``.
+    failures : tuple of str
+        Why the design fails here (empty: it passes).
+    judged : bool
+        False when the baseline's run was stopped (the condition is outside the model's range).
+    """
+
+    condition: Condition
+    runs: dict[str, RunOutcome]
+    failures: tuple[str, ...]
+    judged: bool = True
+
+    @property
+    def change(self) -> float:
+        """The design's a_total against the baseline's, as a fraction (nan if either stopped)."""
+        design, baseline = self.runs["design"].a_total, self.runs["baseline"].a_total
+        return design / baseline - 1.0
+
+
+@dataclass(frozen=True)
+class DesignCheck:
+    """The whole check: conditions, margins, and the verdict.
+
+    Attributes
+    ----------
+    design : Design
+        What was checked.
+    envelope : Envelope
+        Where and by which criteria.
+    conditions : tuple of ConditionCheck
+        Every condition, in the envelope's order.
+    margins : dict of str to LinearMargin
+        The loop's stability per load (skyhook designs; empty for another controller).
+    """
+
+    design: Design
+    envelope: Envelope
+    conditions: tuple[ConditionCheck, ...]
+    margins: dict[str, LinearMargin]
+
+    @property
+    def failures(self) -> tuple[str, ...]:
+        """Every failing condition or margin, named, with its reason."""
+        found = []
+        for load, margin in self.margins.items():
+            if margin.margin_rad_s < self.envelope.margin_rad_s:
+                found.append(
+                    f"{load}: linearised loop margin {margin.margin_rad_s:.3f} rad/s below "
+                    f"{self.envelope.margin_rad_s:g} rad/s"
+                )
+            if margin.sampled_unstable:
+                found.append(
+                    f"{load}: loop unstable on {margin.sampled_unstable} of {margin.sampled} "
+                    f"sampled plants (worst margin {margin.worst_sampled_rad_s:.3f} rad/s)"
+                )
+        for check in self.conditions:
+            found += [f"{check.condition.label}: {reason}" for reason in check.failures]
+        return tuple(found)
+
+    @property
+    def passed(self) -> bool:
+        """True when nothing fails."""
+        return not self.failures
+
+    @property
+    def not_judged(self) -> tuple[str, ...]:
+        """Conditions whose baseline run the simulator stopped, with its reason."""
+        return tuple(
+            f"{c.condition.label}: baseline {c.runs['baseline'].stopped}"
+            for c in self.conditions
+            if not c.judged
+        )
+
+
+def judge_condition(
+    condition: Condition, runs: dict[str, RunOutcome], envelope: Envelope
+) -> ConditionCheck:
+    """The failures of the design's run against the baseline's (module notes)."""
+    from loader_model.simulation.settling import REST_FLOOR_RAD_S2
+
+    design, baseline = runs["design"], runs["baseline"]
+    if baseline.stopped:
+        return ConditionCheck(condition, runs, (), judged=False)
+    if design.stopped:
+        return ConditionCheck(condition, runs, (f"run stopped: {design.stopped}",))
+    failures = []
+    limit = baseline.a_total * (1.0 + envelope.worse_than_baseline)
+    if design.a_total > limit:
+        failures.append(
+            f"a_total {design.a_total:.3f} m/s² is {design.a_total / baseline.a_total - 1:+.1%} "
+            f"against the baseline's {baseline.a_total:.3f} (allowed "
+            f"{envelope.worse_than_baseline:+.0%})"
+        )
+    if design.command_duty > envelope.command_duty:
+        failures.append(
+            f"pump command at V_p,max for {design.command_duty:.1%} of the run (allowed "
+            f"{envelope.command_duty:.0%})"
+        )
+    if design.rate_duty > envelope.rate_duty:
+        failures.append(
+            f"pump displacement rate at its limit for {design.rate_duty:.1%} of the run (allowed "
+            f"{envelope.rate_duty:.0%})"
+        )
+    if design.persistent:
+        failures.append(
+            f"persistent oscillation after the road: pitch acceleration {design.tail_rms:.3f} "
+            f"rad/s² r.m.s. in the last second, {design.decay_ratio:.2f} of the second before"
+        )
+    elif design.tail_rms > max(REST_FLOOR_RAD_S2, envelope.tail_factor * baseline.tail_rms):
+        failures.append(
+            f"slow decay after the road: pitch acceleration {design.tail_rms:.3f} rad/s² r.m.s. "
+            f"in the last second against the baseline's {baseline.tail_rms:.3f}"
+        )
+    return ConditionCheck(condition, runs, tuple(failures))
