@@ -11,9 +11,13 @@ Importing the package is cheap: submodules load on first attribute access.
 from __future__ import annotations
 
 import importlib
+from importlib import metadata
 from typing import Any
 
-__version__ = "0.1.0"
+try:  # the one version string is pyproject.toml's, read from the installed package's metadata
+    __version__ = metadata.version("loader-model")
+except metadata.PackageNotFoundError:  # the source tree on sys.path without an install
+    __version__ = "0+unknown"
 
 _LAZY_ATTRIBUTES = {
     "LoaderDynamics": "loader_model.vehicle.dynamics",

@@ -21,11 +21,12 @@ from __future__ import annotations
 
 import argparse
 
-from loader_model.commands.common import add_model_arguments
+from loader_model.commands.common import add_model_arguments, add_progress_argument
 
-__all__ = ["CONTROLLERS", "HELP", "add_arguments", "run"]
+__all__ = ["CONTROLLERS", "GUIDE", "HELP", "add_arguments", "run"]
 
 HELP = "the clairvoyant bound on a course beside the baseline and every controller"
+GUIDE = "bound.md"  # its page of the user guide (docs/guide/)
 
 #: Controllers the command runs by default (baseline always).
 CONTROLLERS = (
@@ -42,29 +43,29 @@ CONTROLLERS = (
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Register the arguments of ``loader-model bound``."""
     add_model_arguments(parser)
-    parser.add_argument("--course", default="paper", help="'paper' (the only course so far)")
-    parser.add_argument("--speed", type=float, default=9.0, metavar="KMH", help="9 or 18 km/h")
+    parser.add_argument("--course", default="paper", metavar="COURSE", help="'paper'")
+    parser.add_argument(
+        "--speed", type=float, default=9.0, metavar="KMH", help="speed in km/h: 9 or 18"
+    )
     parser.add_argument(
         "--controllers",
         default=",".join(CONTROLLERS),
         metavar="LIST",
-        help=f"comma-separated, from {', '.join(CONTROLLERS)} (default: all)",
+        help=f"comma-separated, from {', '.join(CONTROLLERS)} (default: all of them)",
     )
-    parser.add_argument(
-        "--hold-ms", type=int, default=10, metavar="MS", help="command grid in ms (default 10)"
-    )
+    parser.add_argument("--hold-ms", type=int, default=10, metavar="MS", help="command grid in ms")
     parser.add_argument(
         "--max-intervals",
         type=int,
         default=6000,
         metavar="N",
-        help="largest number of command values one problem may have (default 6000)",
+        help="largest number of command values one problem may have",
     )
     parser.add_argument(
         "--bound",
         default="linear",
         metavar="KIND",
-        help="'linear' (no limits, under a second; default), 'constrained' (the pump's, "
+        help="'linear' (no limits, under a second), 'constrained' (the pump's, "
         "pressure and stroke limits on the linear plant; minutes on the 15 s course) or "
         "'nonlinear' (the machine's own bound in the simulator; use --duration: minutes for "
         "a few seconds of course)",
@@ -80,7 +81,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         default=None,
         metavar="LIST",
         help="with --pump-sizing: comma-separated scale factors of each pump parameter "
-        "(default 0.5,0.75,1,1.5,2)",
+        "(default: 0.5,0.75,1,1.5,2)",
     )
     parser.add_argument(
         "--duration",
@@ -89,7 +90,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="S",
         help="horizon in s (default: the whole course)",
     )
-    parser.add_argument("--output", metavar="DIR", default=None, help="write bound.csv, .png")
+    parser.add_argument(
+        "--output", metavar="DIR", default=None, help="write bound.csv and bound.png into DIR"
+    )
+    add_progress_argument(parser)
 
 
 def _controllers(text: str) -> tuple[str, ...]:
@@ -162,7 +166,14 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
     except ValueError as error:
         raise ValueError(f"--course/--speed/--hold-ms: {error}") from None
     title = f"{course.name}; load {args.load}"
-    comparison = compare(problem, road, scenarios, title=title, bound=args.bound, progress=True)
+    comparison = compare(
+        problem,
+        road,
+        scenarios,
+        title=title,
+        bound=args.bound,
+        progress=not args.no_progress,
+    )
     print(format_comparison(comparison))
     solved = comparison.bound
     detail = ""
@@ -273,7 +284,7 @@ def _pump_sizing(args: argparse.Namespace, written: list[str]) -> int:
         controller=lambda sized: ride_scenario(sized, "skyhook", settings),
         hold_periods=args.hold_ms,
         duration_s=args.duration,
-        progress=True,
+        progress=not args.no_progress,
     )
     print(
         f"{'parameter':<10}{'factor':>8}{'baseline':>10}{'(linear)':>10}{'bound':>10}"

@@ -2,8 +2,8 @@
 
 Fits tyre stiffnesses (k_x, k_Ay, k_By), the chassis and boom inertias and the piston-side dead
 volume within physical bounds (loader_model.modal.table1.FREE_PARAMETERS), on the generated
-model, reading Table 1's columns as M·φ (DESIGN.md errata 7). Writes the calibrated parameter file
-only if every frequency is within 1 % and every MAC at least 0.99.
+model, reading Table 1's columns as M·φ (item 7 of the errata page, docs/guide/errata.md).
+Writes the calibrated parameter file only if every frequency is within 1 % and every MAC at least 0.99.
 """
 
 from __future__ import annotations
@@ -13,6 +13,7 @@ import argparse
 from loader_model.commands.common import add_model_arguments
 
 HELP = "fit the least-known parameters to the paper's Table 1 and write a parameter file"
+GUIDE = "parameters.md"  # its page of the user guide (docs/guide/)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:

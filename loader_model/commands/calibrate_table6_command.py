@@ -10,29 +10,28 @@ from __future__ import annotations
 
 import argparse
 
+from loader_model.commands.common import add_jobs_argument, add_progress_argument
+
 HELP = "fit the estimated parameters to Table 6's cells at one speed (the other held out)"
+GUIDE = "reproduction.md"  # its page of the user guide (docs/guide/)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--fit-speed", type=float, choices=(9.0, 18.0), default=9.0, metavar="KMH",
-        help="the speed whose six cells are fitted: 9 or 18 km/h (default 9; the other is held out)",
+        help="the speed whose six cells are fitted: 9 or 18 km/h (the other is held out)",
     )  # fmt: skip
     parser.add_argument(
         "--evaluations", type=int, default=128, metavar="N",
-        help="cost evaluations in all (each one run of the fitted speed's trials; default 128)",
+        help="cost evaluations in all (each one run of the fitted speed's trials)",
     )  # fmt: skip
     parser.add_argument(
         "--design-points", type=int, default=32, metavar="N",
-        help="points of the Sobol design before Nelder-Mead, a power of 2 (default 32)",
+        help="points of the Sobol design before Nelder-Mead, a power of 2",
     )  # fmt: skip
-    parser.add_argument(
-        "--trials", type=int, default=1, metavar="N", help="trials per cell (default 1)"
-    )
-    parser.add_argument(
-        "--seed", type=int, default=0, metavar="N", help="seed of the trials (default 0)"
-    )
-    parser.add_argument("--jobs", type=int, default=1, metavar="N", help="processes (default 1)")
+    parser.add_argument("--trials", type=int, default=1, metavar="N", help="trials per cell")
+    parser.add_argument("--seed", type=int, default=0, metavar="N", help="seed of the trials")
+    add_jobs_argument(parser, 1, "simulating the trials")
     parser.add_argument(
         "--output", metavar="FILE.toml", default=None, help="calibrated loader file"
     )
@@ -40,7 +39,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--summary", metavar="FILE.json", default=None,
         help="the fit's summary (J before and after, evaluations, values, bounds reached)",
     )  # fmt: skip
-    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    add_progress_argument(parser)
 
 
 def run(args: argparse.Namespace) -> int:

@@ -7,8 +7,8 @@ prints per condition a_total (ISO 2631-1, Eq. 50) beside the baseline's and the 
 pitch axis, the pump command's and displacement rate's time at their limits, the lift-offs and
 the residual pitch at the end of the settle window, then the loop's stability margin on each
 load's linearised plant and over sampled plants, and the verdict: every failing condition with
-its reason. A TOML file overrides the envelope and the criteria (--envelope; the user guide's
-page on controllers shows its format).
+its reason. A TOML file overrides the envelope and the criteria (--conditions; the user guide's
+page on the design check shows its format).
 
 Exit codes: 0 the design passes, 4 it fails the check, 2 a usage error.
 """
@@ -17,7 +17,14 @@ from __future__ import annotations
 
 import argparse
 
+from loader_model.commands.common import (
+    add_jobs_argument,
+    add_machine_argument,
+    add_progress_argument,
+)
+
 HELP = "check a controller design on the nonlinear machine over its operating envelope"
+GUIDE = "design_check.md"  # its page of the user guide (docs/guide/)
 
 #: Exit code of a design that fails its check.
 EXIT_CHECK_FAILED = 4
@@ -35,14 +42,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--controller",
         choices=("skyhook", "virtual-accumulator"),
         default="skyhook",
-        help="the control law the settings are for (default: skyhook)",
+        help="the control law the settings are for",
     )
-    parser.add_argument(
-        "--machine",
-        metavar="NAME|FILE",
-        default="skid_steer",
-        help="a generated machine or its description file (default: skid_steer)",
-    )
+    add_machine_argument(parser)
     parser.add_argument(
         "--params",
         metavar="FILE",
@@ -50,7 +52,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="the machine's parameter file (default: its shipped values)",
     )
     parser.add_argument(
-        "--envelope",
+        "--conditions",
         metavar="FILE.toml",
         default=None,
         help="conditions and criteria to check over (default: the default envelope)",
@@ -69,14 +71,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="robustness study whose parameter distributions the sampled plants are drawn "
         "from (default: the shipped example for the skid-steer, none for another machine)",
     )
-    parser.add_argument("--jobs", type=int, default=2, metavar="N", help="processes (default: 2)")
+    add_jobs_argument(parser, 2, "driving the conditions")
     parser.add_argument(
         "--output",
         metavar="FILE.md|FILE.csv",
         default=None,
         help="also write the check as Markdown or CSV",
     )
-    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    add_progress_argument(parser)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -109,7 +111,7 @@ def _check(args: argparse.Namespace, written: list[str]) -> int:
         raise ValueError(f"--jobs {args.jobs}: allowed: an integer >= 1")
     if args.sampled_plants is not None and args.sampled_plants < 0:
         raise ValueError(f"--sampled-plants {args.sampled_plants}: allowed: an integer >= 0")
-    envelope = DEFAULT_ENVELOPE if args.envelope is None else load_envelope(args.envelope)
+    envelope = DEFAULT_ENVELOPE if args.conditions is None else load_envelope(args.conditions)
     design = load_design(args.settings, args.controller, args.machine, args.params)
     check = check_design(
         design,

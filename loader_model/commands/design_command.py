@@ -1,41 +1,44 @@
-"""Ride-comfort gain design (issue 11): K_fb minimising the ISO 2631-1 a_total (Eq. 50) on an
+"""Ride-comfort gain design: K_fb minimising the ISO 2631-1 a_total (Eq. 50) on an
 ISO 8608 road, beside Table 3 and the output-feedback LQR (Eq. 41, 42); writes Fig. 12."""
 
 from __future__ import annotations
 
 import argparse
 
+from loader_model.commands.common import (
+    add_jobs_argument,
+    add_machine_argument,
+    add_progress_argument,
+)
+
 HELP = "design the skyhook gains K_fb (LQR or ISO 2631 optimisation); Fig. 12"
+GUIDE = "controllers.md"  # its page of the user guide (docs/guide/)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add ``--params``, ``--load``, ``--method``, ``--solver``, ``--road``, ``--speed``,
     ``--margin``, ``--plot`` and ``--output``."""
-    parser.add_argument(
-        "--machine",
-        metavar="NAME|FILE",
-        default="skid_steer",
-        help="a generated machine (skid_steer, compact_wheel_loader, ...) or its description "
-        "file; default: skid_steer (every method for every machine)",
-    )
+    add_machine_argument(parser, "; every method for every machine")
     parser.add_argument(
         "--params",
         metavar="FILE",
         default=None,
-        help="parameter file (for another machine than the skid-steer its flat file)",
+        help="parameter file (TOML; for another machine than the skid-steer its flat file) "
+        "(default: the shipped values of the machine)",
     )
     parser.add_argument(
         "--load",
         choices=("empty", "full", "both"),
         default="both",
-        help="bucket load(s) the gains are designed for (default: both, robust gains)",
+        help="bucket load the gains are designed for; both: gains robust over the empty and the "
+        "full bucket",
     )
     parser.add_argument(
         "--method",
         choices=("lqr", "optimise", "refine", "machine"),
         default="optimise",
         help="lqr: output-feedback LQR (Eq. 41, 42); optimise: ISO 2631 a_total on the linear "
-        "plant (default); machine: optimise, then minimise a_total relative to the baseline on "
+        "plant; machine: optimise, then minimise a_total relative to the baseline on "
         "the nonlinear machine over both loads, boards at 9 and 18 km/h and an ISO 8608 class C "
         "road at 15 km/h, with exact gradients and the design check's criteria as constraints; "
         "refine: optimise, then a derivative-free (Nelder-Mead) refinement on the paper course "
@@ -45,7 +48,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--solver",
         choices=("bfgs", "ipopt"),
         default="bfgs",
-        help="optimise/refine: bfgs: certified BFGS with adjoint gradients (default); ipopt: "
+        help="optimise/refine: bfgs: certified BFGS with adjoint gradients; ipopt: "
         "IPOPT through CasADi on the same cost (every iterate stable, same optimum)",
     )
     parser.add_argument(
@@ -60,14 +63,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         type=int,
         default=120,
         metavar="N",
-        help="refine: budget of course evaluations (120)",
+        help="refine: budget of course evaluations",
     )
-    parser.add_argument("--road", default="C", metavar="CLASS", help="ISO 8608 class A-H (C)")
-    parser.add_argument("--speed", type=float, default=9.0, metavar="KMH", help="km/h (9)")
+    parser.add_argument("--road", default="C", metavar="CLASS", help="ISO 8608 road class, A-H")
+    parser.add_argument("--speed", type=float, default=9.0, metavar="KMH", help="speed in km/h")
     parser.add_argument(
-        "--margin", type=float, default=0.1, metavar="RAD_S", help="stability margin σ (0.1)"
+        "--margin", type=float, default=0.1, metavar="RAD_S", help="stability margin σ in rad/s"
     )
-    parser.add_argument("--plot", metavar="FILE.png", default=None, help="write Fig. 12 here")
+    parser.add_argument("--plot", metavar="FILE.png", default=None, help="write Fig. 12 here (PNG)")
     parser.add_argument(
         "--output",
         metavar="FILE.toml",
@@ -77,7 +80,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "check, unless --force",
     )
     parser.add_argument(
-        "--envelope",
+        "--conditions",
         metavar="FILE.toml",
         default=None,
         help="conditions and criteria of the design check (default: the default envelope, "
@@ -94,8 +97,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="skip the design check on the nonlinear machine (nothing is written without it "
         "unless --force)",
     )
-    parser.add_argument("--jobs", type=int, default=2, metavar="N", help="processes (default: 2)")
-    parser.add_argument("--no-progress", action="store_true", help="no progress bars")
+    add_jobs_argument(parser, 2, "of the design check and the machine method")
+    add_progress_argument(parser)
 
 
 def _row(label: str, gain, evaluations) -> str:
@@ -126,6 +129,7 @@ def _refine(args: argparse.Namespace, start, loads, params, machine: str):
         params=params,
         max_evaluations=args.evaluations,
         machine=machine,
+        progress=not args.no_progress,
     )
     for name, totals in (
         ("Table 3", table3),
@@ -215,7 +219,7 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
     if not args.no_check:
         from loader_model.experiments.design_check import DEFAULT_ENVELOPE, load_envelope
 
-        envelope = DEFAULT_ENVELOPE if args.envelope is None else load_envelope(args.envelope)
+        envelope = DEFAULT_ENVELOPE if args.conditions is None else load_envelope(args.conditions)
     from loader_model.machines import resolve_machine_name
 
     machine = resolve_machine_name(getattr(args, "machine", "skid_steer"))

@@ -25,6 +25,7 @@ if TYPE_CHECKING:
     from loader_model.control.settings import ControllerSettings
 
 HELP = "export the nonlinear plant as an FMI 2.0 Model Exchange FMU"
+GUIDE = "fmu.md"  # its page of the user guide (docs/guide/)
 
 #: ``--controller`` choice -> controller Function name (None: the plant alone).
 CONTROLLER_CHOICES = {

@@ -1,4 +1,4 @@
-"""The fidelity budget of Table 6 and the uncertainty of its signs (issue 21).
+"""The fidelity budget of Table 6 and the uncertainty of its signs.
 
 Runs the Table 6 matrix once per modelling step (as it was; circuit states; seat pad and occupant;
 tyre enveloping; k_φ sign; calibrated to 9 km/h; calibrated to 18 km/h:
@@ -11,23 +11,22 @@ from __future__ import annotations
 
 import argparse
 
+from loader_model.commands.common import add_jobs_argument, add_progress_argument
+
 HELP = "measure the fidelity budget of Table 6 step by step and the uncertainty of its signs"
+GUIDE = "reproduction.md"  # its page of the user guide (docs/guide/)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument(
-        "--trials", type=int, default=4, metavar="N", help="trials per cell (default 4)"
-    )
-    parser.add_argument(
-        "--seed", type=int, default=0, metavar="N", help="seed of the trials (default 0)"
-    )
-    parser.add_argument("--jobs", type=int, default=2, metavar="N", help="processes (default 2)")
+    parser.add_argument("--trials", type=int, default=4, metavar="N", help="trials per cell")
+    parser.add_argument("--seed", type=int, default=0, metavar="N", help="seed of the trials")
+    add_jobs_argument(parser, 2, "simulating the trials")
     parser.add_argument(
         "--samples", type=int, default=None, metavar="N",
         help="machines of the uncertainty study (default: the study file's, 96)",
     )  # fmt: skip
     parser.add_argument("--output", metavar="FILE.json", required=True, help="the budget (JSON)")
-    parser.add_argument("--no-progress", action="store_true", help="no progress bars")
+    add_progress_argument(parser)
 
 
 def run(args: argparse.Namespace) -> int:

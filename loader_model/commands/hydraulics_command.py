@@ -8,6 +8,7 @@ import argparse
 from loader_model.commands.common import add_model_arguments
 
 HELP = "hydraulic plant: static pressures, k_eq, coupled modes, pressure loop vs Eq. 43"
+GUIDE = "hydraulics.md"  # its page of the user guide (docs/guide/)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:

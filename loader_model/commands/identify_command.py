@@ -1,12 +1,12 @@
 """Identify seal friction (Table 4) or leakage and compressibility (Table 5) from a CSV record.
 
 ``identify friction DATA.csv`` and ``identify leakage DATA.csv`` read a measurement file (header
-``time [s],x_cyl [m],p_A [Pa],p_B [Pa],Q_A [m^3/s],m_load [kg]``; see the README), fit Eq. 46
-or Eq. 48 (paper section 4.1) and print the coefficients beside the paper's tables with R², s
-and confidence intervals. ``--plot`` writes a fit plot, ``--update`` a new parameter file whose
-identified values carry their source. ``identify synthesize OUT.csv`` writes a synthetic lift
-test run on the hydraulic plant with the shipped loader (Table 4 and 5 values; noise,
-quantisation, offsets, outliers and seed as options).
+``time [s],x_cyl [m],p_A [Pa],p_B [Pa],Q_A [m^3/s],m_load [kg]``; the guide's page
+docs/guide/identification.md), fit Eq. 46 or Eq. 48 (paper section 4.1) and print the coefficients
+beside the paper's tables with R², s and confidence intervals. ``--plot`` writes a fit plot,
+``--update`` a new parameter file whose identified values carry their source. ``identify synthesize
+OUT.csv`` writes a synthetic lift test run on the hydraulic plant with the shipped loader (Table 4
+and 5 values; noise, quantisation, offsets, outliers and seed as options).
 """
 
 from __future__ import annotations
@@ -14,35 +14,44 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
-__all__ = ["HELP", "add_arguments", "run"]
+__all__ = ["GUIDE", "HELP", "add_arguments", "run"]
 
 HELP = "identify friction (Table 4) or leakage (Table 5) from a CSV record; synthesize records"
+GUIDE = "identification.md"  # its page of the user guide (docs/guide/)
 
 
 def _fit_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("data", metavar="DATA.csv", help="measurement CSV (format in README)")
+    parser.add_argument(
+        "data",
+        metavar="DATA.csv",
+        help="measurement CSV (its columns: docs/guide/identification.md)",
+    )
     parser.add_argument(
         "--params",
         metavar="FILE",
         default=None,
-        help="loader parameter file (TOML): cylinders, pump, geometry; default: shipped loader",
+        help="loader parameter file (TOML): cylinders, pump, geometry (default: the shipped loader)",
     )
     parser.add_argument(
         "--load",
         default="full",
         metavar="CASE",
         help="bucket-load case whose centre of gravity and inertia per kg place the load "
-        "('empty', 'full' or a TOML file; default: full)",
+        "('empty', 'full' or a TOML file; the synthetic lift test's load)",
     )
     parser.add_argument(
         "--cutoff",
         type=float,
         default=None,
         metavar="HZ",
-        help="-3 dB cutoff of the Savitzky-Golay smoothing in Hz (default 10)",
+        help="-3 dB cutoff of the Savitzky-Golay smoothing in Hz (default: 10)",
     )
     parser.add_argument(
-        "--level", type=float, default=0.95, help="confidence level of the intervals (0.95)"
+        "--level",
+        type=float,
+        default=0.95,
+        metavar="LEVEL",
+        help="confidence level of the intervals",
     )
     parser.add_argument("--plot", metavar="FILE.png", help="write the fit plot (PNG, PDF, SVG)")
     parser.add_argument(
@@ -72,14 +81,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "synthesize", help="write a synthetic lift-test record", description=__doc__
     )
     synth.add_argument("output", metavar="OUT.csv", help="CSV file to write")
-    synth.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
-    synth.add_argument("--cycles", type=int, default=12, help="extend/retract cycles (12)")
+    synth.add_argument("--seed", type=int, default=0, metavar="N", help="random seed")
+    synth.add_argument("--cycles", type=int, default=12, metavar="N", help="extend/retract cycles")
     synth.add_argument(
         "--friction-test",
         action="store_true",
         help="the friction test: speeds log-uniform over 0.01-0.25 m/s, a 5 um position "
-        "sensor (1 um steps) and 0.01 m/s^2 accelerometers (README); the noise options below "
-        "then default to those",
+        "sensor (1 um steps) and 0.01 m/s^2 accelerometers (docs/guide/identification.md); "
+        "the noise options below then default to those",
     )
     synth.add_argument(
         "--no-chassis",
@@ -103,10 +112,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     }
     for name, (metavar, text, default) in defaults.items():
         synth.add_argument(
-            f"--{name}", type=float, default=None, metavar=metavar, help=f"{text} ({default:g})"
+            f"--{name}",
+            type=float,
+            default=None,
+            metavar=metavar,
+            help=f"{text} (default: {default:g})",
         )
     synth.add_argument(
-        "--pressure-unit", choices=("Pa", "bar"), default="Pa", help="unit of p_A, p_B columns"
+        "--pressure-unit", choices=("Pa", "bar"), default="Pa", help="unit of the p_A, p_B columns"
     )
 
 
@@ -155,7 +168,7 @@ def _fit(args: argparse.Namespace, written: list[str]) -> int:
             "\nEq. 44 load: the boom on the moving chassis (columns theta_1, f_Hx, f_Hy, f_Ny)"
             if record.has_chassis
             else "\nEq. 44 load: chassis taken at rest (no chassis columns; on tyres this leaves "
-            "kN of error, see the README)"
+            "kN of error, see docs/guide/identification.md)"
         )
         text = rep.format_friction(result.fit, int(result.used.sum()))
         updates = rep.friction_updates(result.fit)

@@ -12,9 +12,10 @@ from __future__ import annotations
 
 import argparse
 
-__all__ = ["HELP", "add_arguments", "run"]
+__all__ = ["GUIDE", "HELP", "add_arguments", "run"]
 
 HELP = "ISO 2631-1 whole-body vibration evaluation of a CSV record (Eq. 49, 50)"
+GUIDE = "iso2631.md"  # its page of the user guide (docs/guide/)
 
 
 def _pair(text: str) -> tuple[str, str]:
@@ -56,20 +57,20 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         type=float,
         default=1.0,
         metavar="S",
-        help="running r.m.s. integration time for MTVV in s (default 1)",
+        help="running r.m.s. integration time for MTVV in s",
     )
     parser.add_argument(
         "--running-rms",
         choices=("linear", "exponential"),
         default="linear",
-        help="running r.m.s. integration (ISO 2631-1 6.3.1; default linear)",
+        help="running r.m.s. integration (ISO 2631-1 6.3.1)",
     )
     parser.add_argument(
         "--exposure-hours",
         type=float,
         default=8.0,
         metavar="H",
-        help="daily exposure time for A(8) and the daily VDV in h (default 8)",
+        help="daily exposure time for A(8) and the daily VDV in h",
     )
     parser.add_argument(
         "--plot-weightings",

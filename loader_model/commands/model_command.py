@@ -7,6 +7,7 @@ import argparse
 from loader_model.commands.common import add_model_arguments, model_from_arguments
 
 HELP = "print the model at the static equilibrium and export its linear model"
+GUIDE = "model.md"  # its page of the user guide (docs/guide/)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:

@@ -7,6 +7,7 @@ import argparse
 from loader_model.commands.common import add_model_arguments, machine_from_arguments
 
 HELP = "undamped modes of a loader side by side with the paper's Table 1"
+GUIDE = "model.md"  # its page of the user guide (docs/guide/)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:

@@ -14,24 +14,33 @@ from __future__ import annotations
 
 import argparse
 
-from loader_model.commands.common import add_model_arguments
+from loader_model.commands.common import add_model_arguments, add_progress_argument
 
-__all__ = ["HELP", "add_arguments", "run"]
+__all__ = ["GUIDE", "HELP", "add_arguments", "run"]
 
 HELP = "LQ control with road preview: a_total against the preview length beside the bound"
+GUIDE = "bound.md"  # its page of the user guide (docs/guide/)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Register the arguments of ``loader-model preview``."""
     add_model_arguments(parser)
-    parser.add_argument("--speed", type=float, default=9.0, metavar="KMH", help="9 or 18 km/h")
     parser.add_argument(
-        "--preview", default="0,0.5,1,2,4", metavar="LIST", help="preview lengths in m"
+        "--speed", type=float, default=9.0, metavar="KMH", help="speed in km/h: 9 or 18"
+    )
+    parser.add_argument(
+        "--preview",
+        default="0,0.5,1,2,4",
+        metavar="LIST",
+        help="comma-separated preview lengths in m",
     )
     parser.add_argument(
         "--simulate", action="store_true", help="also run each law in the 1 kHz simulation"
     )
-    parser.add_argument("--output", metavar="DIR", default=None, help="write preview.csv, .png")
+    parser.add_argument(
+        "--output", metavar="DIR", default=None, help="write preview.csv and preview.png into DIR"
+    )
+    add_progress_argument(parser)
 
 
 def _lengths(text: str) -> list[float]:
@@ -98,7 +107,7 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
     }
     steps = 2 + len(lengths) * (2 if args.simulate else 1) + len(references)
     linear, simulated, peaks, totals = [], [], [], {}
-    with tqdm(total=steps, desc="preview", unit="step") as bar:
+    with tqdm(total=steps, desc="preview", unit="step", disable=args.no_progress) as bar:
         bar.set_postfix_str("design")
         design = preview_design(problem)
         bar.update()

@@ -9,26 +9,27 @@ from __future__ import annotations
 
 import argparse
 
+from loader_model.commands.common import add_jobs_argument, add_progress_argument
+
 HELP = "reproduce the paper's results on the default loader and write the report folder"
+GUIDE = "reproduction.md"  # its page of the user guide (docs/guide/)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Register ``--output``, ``--jobs``, ``--trials``, ``--seed``, ``--envelope``,
     ``--no-progress``."""
-    parser.add_argument(
-        "--output", default="results/report", metavar="DIR", help="report folder (results/report)"
-    )
-    parser.add_argument("--jobs", type=int, default=2, metavar="N", help="worker processes (2)")
-    parser.add_argument("--trials", type=int, default=4, metavar="N", help="trials per cell (4)")
-    parser.add_argument("--seed", type=int, default=0, metavar="N", help="base seed (0)")
+    parser.add_argument("--output", default="results/report", metavar="DIR", help="report folder")
+    add_jobs_argument(parser, 2, "simulating the trials")
+    parser.add_argument("--trials", type=int, default=4, metavar="N", help="trials per cell")
+    parser.add_argument("--seed", type=int, default=0, metavar="N", help="base seed of the trials")
     parser.add_argument(
         "--envelope",
         choices=("tandem-cam", "rigid"),
         default="tandem-cam",
         help="how the tyres envelop the boards: tandem elliptical cams per axle from the static "
-        "tyre deflection (default) or rigid discs",
+        "tyre deflection or rigid discs",
     )
-    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    add_progress_argument(parser)
 
 
 def _print_model() -> None:

@@ -1,5 +1,5 @@
-"""Robustness study: every controller against the baseline over sampled plants, roads,
-speeds and bucket loads, from a study file (TOML; README "Robustness study", example
+"""Robustness study: every controller against the baseline over sampled plants, roads, speeds
+and bucket loads, from a study file (TOML; the guide's page docs/guide/robustness.md, example
 ``loader_model/data/robustness_example.toml``).
 
 Writes into the results folder: ``parts/`` (one Parquet file per finished batch; a rerun resumes
@@ -22,13 +22,17 @@ import os
 from pathlib import Path
 from typing import Any
 
-__all__ = ["HELP", "add_arguments", "run"]
+from loader_model.commands.common import add_jobs_argument, add_progress_argument
+
+__all__ = ["GUIDE", "HELP", "add_arguments", "run"]
 
 HELP = "robustness study over sampled plants, roads, speeds and loads (local pool or Dask)"
+GUIDE = "robustness.md"  # its page of the user guide (docs/guide/)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add ``STUDY``, ``--output``, ``--workers``, ``--scheduler``, ``--no-progress``."""
+    """Add ``STUDY``, ``--output``, ``--jobs`` (``--workers``, its former name, hidden),
+    ``--scheduler``, ``--no-progress``."""
     parser.add_argument("study", metavar="STUDY.toml", help="study file")
     parser.add_argument(
         "--output",
@@ -37,13 +41,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="results folder (default: <study name>_results in the current folder); "
         "rerunning on it resumes",
     )
-    parser.add_argument(
-        "--workers",
-        type=int,
-        default=None,
-        metavar="N",
-        help="local worker processes (default: the number of cores; 1: this process)",
-    )
+    add_jobs_argument(parser, None, "of the local pool (1: this process)")
+    parser.add_argument("--workers", type=int, dest="jobs", help=argparse.SUPPRESS)  # former name
     parser.add_argument(
         "--scheduler",
         metavar="ADDRESS",
@@ -51,7 +50,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="Dask scheduler address (e.g. tcp://host:8786, from dask-jobqueue); "
         "runs on that cluster instead of the local pool",
     )
-    parser.add_argument("--no-progress", action="store_true", help="no progress bar")
+    add_progress_argument(parser)
 
 
 def _kept(study: Any, folder: Path) -> str:
@@ -73,9 +72,9 @@ def run(args: argparse.Namespace) -> int:
     from loader_model.robustness.study import load_study
 
     study = load_study(args.study)
-    workers = (os.cpu_count() or 1) if args.workers is None else args.workers
+    workers = (os.cpu_count() or 1) if args.jobs is None else args.jobs
     if workers < 1:
-        raise ValueError(f"--workers {workers}: allowed: an integer >= 1")
+        raise ValueError(f"--jobs {workers}: allowed: an integer >= 1")
     folder = Path(args.output or f"{Path(args.study).stem}_results")
     if not folder.parent.is_dir():
         raise ValueError(f"--output {str(folder)!r}: the folder {str(folder.parent)!r} is missing")

@@ -7,7 +7,7 @@ k = 0.4 for pitch) and the events of the run (tyre lift-off, end stops, cavitati
 saturation); writes the time series (CSV with units or NPZ) and a PNG of the seat accelerations.
 A run that leaves the model's range of validity (tipping over, the boom past its end stops, the
 machine in the air for over 0.5 s, the seat above 50 g: :mod:`loader_model.simulation.validity`)
-stops there: no evaluation, an error naming the time, the state and the bound (exit code 2), and
+stops there: no evaluation, an error naming the time, the state and the bound (exit code 3), and
 the time series up to the stop written where --output asks.
 
 Controllers: ``baseline`` (the pump holds the boom at its static command), ``passive`` (the
@@ -23,15 +23,20 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from loader_model.commands.common import add_model_arguments, machine_from_arguments
+from loader_model.commands.common import (
+    OutsideValidityError,
+    add_model_arguments,
+    machine_from_arguments,
+)
 
 if TYPE_CHECKING:
     from loader_model.simulation.result import Event
     from loader_model.simulation.validity_check import ModelValidityError
 
-__all__ = ["CONTROLLERS", "HELP", "add_arguments", "run"]
+__all__ = ["CONTROLLERS", "GUIDE", "HELP", "add_arguments", "run"]
 
 HELP = "simulate a course with a ride controller and evaluate the seat per ISO 2631-1"
+GUIDE = "simulation.md"  # its page of the user guide (docs/guide/)
 
 _SHOWN_EVENTS = 10
 
@@ -47,39 +52,44 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         default="baseline",
         metavar="NAME|FILE.toml",
         help=f"one of {', '.join(CONTROLLERS)}, or a controller settings file (the skyhook "
-        "with its settings, e.g. written by loader-model design --output); default baseline",
+        "with its settings, e.g. written by loader-model design --output)",
     )
-    parser.add_argument(
-        "--speed", type=float, default=9.0, metavar="KMH", help="speed in km/h (default 9)"
-    )
+    parser.add_argument("--speed", type=float, default=9.0, metavar="KMH", help="speed in km/h")
     parser.add_argument(
         "--course",
         default="paper",
         metavar="COURSE",
         help="'paper' (five 4 cm boards; 9 or 18 km/h), 'single' (one board) or "
-        "'iso8608:CLASS' (random road, class A-H); default paper",
+        "'iso8608:CLASS' (random road, class A-H)",
     )
     parser.add_argument(
-        "--duration", type=float, default=None, metavar="S", help="simulated time in s"
+        "--duration",
+        type=float,
+        default=None,
+        metavar="S",
+        help="simulated time in s (default: the course, 200 m of an ISO 8608 road)",
     )
-    parser.add_argument("--seed", type=int, default=0, metavar="N", help="seed of random roads")
+    parser.add_argument("--seed", type=int, default=0, metavar="N", help="seed of the random roads")
     parser.add_argument(
         "--envelope",
         choices=("tandem-cam", "rigid"),
         default="tandem-cam",
         help="how the tyres envelop the road: tandem elliptical cams per axle from the static "
-        "tyre deflection (default) or rigid discs of radius 0.42 m",
+        "tyre deflection or rigid discs of radius 0.42 m",
     )
     parser.add_argument(
         "--substeps",
         type=int,
         default=None,
         metavar="N",
-        help="ROS2 integration steps per 1 ms controller period, 1-64 (default 4: within 0.3 %% "
+        help="ROS2 integration steps per 1 ms controller period, 1-64 (default: 4, within 0.3 %% "
         "of the CVODES reference's a_total on the paper course)",
     )
     parser.add_argument(
-        "--output", metavar="FILE", default=None, help="time series: FILE.csv or FILE.npz"
+        "--output",
+        metavar="FILE",
+        default=None,
+        help="write the time series to FILE.csv or FILE.npz",
     )
     parser.add_argument(
         "--compare",
@@ -114,7 +124,7 @@ def run(args: argparse.Namespace) -> int:
 
     A run that leaves the model's range of validity prints its events, writes its time series
     up to the violation and raises ValueError naming the time, the state, the bound and the
-    files (exit code 2): no ISO 2631 evaluation of it.
+    files (exit code 3): no ISO 2631 evaluation of it.
     """
     from loader_model.io.export import check_output_path
     from loader_model.iso2631 import format_evaluation
@@ -169,7 +179,7 @@ def run(args: argparse.Namespace) -> int:
             course_input(course, scenario), scenario, duration_s=args.duration, **steps
         )
     except ModelValidityError as error:  # no comfort figure for it: the evidence, then the error
-        raise ValueError(_stopped(error, args.output, plot, title)) from None
+        raise OutsideValidityError(_stopped(error, args.output, plot, title)) from None
     print(format_evaluation(result.seat_evaluation(), title=title))
     print(
         f"simulated {result.time_s.size * result.metadata['period_s']:.3f} s in "

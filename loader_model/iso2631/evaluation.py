@@ -269,7 +269,7 @@ def format_evaluation(
                 f"{item.axis}: no vibration (an all-zero or constant channel: a_w = 0); crest "
                 "factor undefined (—)"
             )
-    lines.append(f"vibration total value a_v (paper Eq. 50) = {evaluation.total_m_s2:.4g} m/s²")
+    lines.append(f"vibration total value a_total (paper Eq. 50) = {evaluation.total_m_s2:.4g} m/s²")
     if assessment is not None:
         lines.append(
             f"daily exposure A(8) = {assessment.a8_m_s2:.4g} m/s² ({assessment.a8_status}; "

@@ -47,7 +47,7 @@ def test_designed_gains_go_to_a_settings_file_that_simulate_runs(tmp_path: Path,
         '[envelope]\nloads = ["full"]\nboard_speeds_kmh = [9.0]\nroad_classes = []\n'
     )
     argv = ["design", "--load", "empty", "--solver", "ipopt", "--output", str(target)]
-    assert main([*argv, "--envelope", str(envelope), "--no-progress"]) == 0
+    assert main([*argv, "--conditions", str(envelope), "--no-progress"]) == 0
     out = capsys.readouterr().out
     assert "full, boards 9 km/h" in out and "PASSED" in out
     settings = load_settings(target)
@@ -78,7 +78,7 @@ def test_gains_that_fail_the_check_are_not_written_unless_forced(tmp_path: Path,
     envelope.write_text(
         '[envelope]\nloads = ["empty"]\nboard_speeds_kmh = [9.0]\nroad_classes = []\n'
     )
-    argv = ["design", "--load", "empty", "--output", str(target), "--envelope", str(envelope)]
+    argv = ["design", "--load", "empty", "--output", str(target), "--conditions", str(envelope)]
     assert main([*argv, "--no-progress"]) == 4
     out = capsys.readouterr().out
     assert "FAILED" in out and "empty, boards 9 km/h: a_total" in out

@@ -144,7 +144,7 @@ def test_killed_reproduce_leaves_no_process_and_the_next_run_cleans_up(
 def _robustness(tmp_path: Path, output: Path) -> tuple[str, ...]:
     study = tmp_path / "study.toml"
     study.write_text(STUDY, encoding="utf-8")
-    return ("robustness", str(study), "--output", str(output), "--workers", "2", "--no-progress")
+    return ("robustness", str(study), "--output", str(output), "--jobs", "2", "--no-progress")
 
 
 def test_interrupted_robustness_says_what_is_saved(tmp_path: Path, commands) -> None:

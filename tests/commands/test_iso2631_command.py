@@ -66,7 +66,7 @@ def test_report_lists_every_axis_and_the_total(
             == [item.axis, item.weighting, f"{item.k_factor:.2f}", f"{item.weighted_rms:.4g}"]
             for line in out.splitlines()
         )
-    assert f"a_v (paper Eq. 50) = {expected.total_m_s2:.4g} m/s²" in out
+    assert f"a_total (paper Eq. 50) = {expected.total_m_s2:.4g} m/s²" in out
     assert "daily exposure A(8)" in out
 
 
@@ -90,7 +90,7 @@ def test_options_override_weighting_and_k(
         k_factors={"pitch": 0.63},
         running_rms_method="exponential",
     )
-    assert f"a_v (paper Eq. 50) = {expected.total_m_s2:.4g} m/s²" in out
+    assert f"a_total (paper Eq. 50) = {expected.total_m_s2:.4g} m/s²" in out
     assert any(line.split()[:3] == ["x", "Wc", "1.00"] for line in out.splitlines())
 
 

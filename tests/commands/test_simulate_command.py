@@ -17,7 +17,7 @@ def test_simulate_writes_series_and_plot(tmp_path, capsys) -> None:
     )  # fmt: skip
     assert code == 0
     text = capsys.readouterr().out
-    assert "vibration total value a_v (paper Eq. 50)" in text and "pitch" in text
+    assert "vibration total value a_total (paper Eq. 50)" in text and "pitch" in text
     assert "events:" in text
     header = output.read_text().splitlines()[0]
     assert header.startswith("time [s],x_H [m]") and "f_Sy [m/s^2]" in header
@@ -75,4 +75,4 @@ def test_ride_controllers_run_from_their_fixed_point(controller: str, capsys) ->
     assert (
         main(["simulate", "--controller", controller, "--course", "single", "--duration", "4"]) == 0
     )
-    assert "a_v" in capsys.readouterr().out
+    assert "a_total" in capsys.readouterr().out

@@ -121,7 +121,7 @@ def test_table_lists_axes_total_and_directive_values() -> None:
     lines = text.splitlines()
     assert lines[0] == "seat.csv:"
     assert [line.split()[0] for line in lines[3:7]] == ["x", "y", "z", "pitch"]
-    assert f"a_v (paper Eq. 50) = {evaluation.total_m_s2:.4g} m/s²" in text
+    assert f"a_total (paper Eq. 50) = {evaluation.total_m_s2:.4g} m/s²" in text
     assert "A(8) = " in text and "Directive 2002/44/EC" in text
 
 

@@ -109,7 +109,7 @@ def test_simulate_loads_no_plotting_control_or_scipy_signal(controller: str) -> 
         "import loader_model.cli as cli\n"
         "with contextlib.redirect_stdout(io.StringIO()) as out:\n"
         f"    assert cli.main(['simulate', '--duration', '3', '--controller', {controller!r}]) == 0\n"
-        "assert 'a_v (paper Eq. 50)' in out.getvalue()\n"
+        "assert 'a_total (paper Eq. 50)' in out.getvalue()\n"
     )
     assert _loaded_after(code, ("matplotlib", "control", "scipy.signal", "sympy")) == []
 

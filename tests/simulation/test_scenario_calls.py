@@ -126,7 +126,7 @@ def test_the_simulate_command_from_files_resolves_once(calls, capsys, controller
         ["simulate", "--params", str(DATA / "default_loader.toml"),
          "--load", str(DATA / "load_full.toml"), "--controller", controller, "--duration", "3"]
     )  # fmt: skip
-    assert code == 0 and "a_v" in capsys.readouterr().out
+    assert code == 0 and "a_total" in capsys.readouterr().out
     assert _counts(calls) == _once(1, 1)
 
 
