@@ -8,12 +8,14 @@ which the package ships as a copy in ``loader_model/data/machines/<name>.machine
 (``make regenerate`` refreshes it; a test compares it with ``derive/machines/``).
 
 A description outside the package (``--machine path/to/<stem>.toml``) is derived by
-``python -m derive path/to/<stem>.toml`` into the folder ``path/to/<stem>_generated/`` beside
-it (:func:`generated_folder`, the convention). :func:`resolve_machine_name` checks that folder's
-``DESCRIPTION_HASH`` against the file, imports it under a unique module name
-(``loader_model_machine_<name>_<hash>``) and registers the machine under its ``[machine] name``
-for the rest of the process (a name of a shipped machine, or one already loaded from another
-file, is refused). The registration is per process: worker processes resolve the file again.
+``python -m derive path/to/<stem>.toml`` into the runtime's private cache
+(:func:`generated_folder`, named by the hash of the file and of the deriving code), never
+imported from beside the file: :func:`resolve_machine_name` verifies that folder
+(:mod:`loader_model.machine_packages`: owner, permissions, no link, the hash of every file),
+imports it under a unique module name (``loader_model_machine_<name>_<hash>``) and registers the
+machine under its ``[machine] name`` for the rest of the process (a name of a shipped machine,
+or one already loaded from another file, is refused). The registration is per process: worker
+processes resolve the file again and verify the same folder.
 
 The registry sits below the parameter layer and imports neither SymPy nor ``derive``: only the
 standard library, the generated metadata (no CasADi until a function is built) and
@@ -32,6 +34,7 @@ from __future__ import annotations
 
 import functools
 import importlib
+import importlib.util
 import os
 import pkgutil
 import tomllib
@@ -45,6 +48,7 @@ from loader_model.io.files import read_text
 from loader_model.machine_packages import (
     description_hash,
     external,
+    external_source,
     generated_folder,
     register_external,
 )
@@ -202,9 +206,9 @@ def resolve_machine_name(source: str | os.PathLike[str]) -> str:
         process) or the path of a machine description (``.toml``). A file is matched by its
         ``[machine] name``: a shipped machine's name must come with the contents the package
         was generated from (same hash); any other name is a machine outside the package, whose
-        generated package is the folder :func:`generated_folder` beside the file (written by
-        ``python -m derive <file>``), checked by the description's hash and imported under a
-        unique module name.
+        generated package is its folder in the runtime's cache, :func:`generated_folder`
+        (written by ``python -m derive <file>``), verified and imported under a unique module
+        name (:mod:`loader_model.machine_packages`).
 
     Raises
     ------
@@ -212,7 +216,8 @@ def resolve_machine_name(source: str | os.PathLike[str]) -> str:
         For an unknown name (listing the machines), an unreadable or malformed file, a
         shipped machine's description that changed since the generation (run
         ``make regenerate``), or a machine outside the package whose generated package is
-        missing, stale or broken (naming the file and the ``python -m derive`` command).
+        missing, stale, tampered with or broken (naming the file and the ``python -m derive``
+        command).
     """
     text = os.fspath(source)
     if not (isinstance(source, os.PathLike) or text.endswith(".toml") or os.sep in text):
@@ -222,11 +227,12 @@ def resolve_machine_name(source: str | os.PathLike[str]) -> str:
     raw = read_text(text, "machine description")
     try:
         name = tomllib.loads(raw)["machine"]["name"]
-    except (tomllib.TOMLDecodeError, KeyError, TypeError) as error:
+    except (tomllib.TOMLDecodeError, KeyError, TypeError, RecursionError) as error:
         raise ValueError(
-            f"{text}: not a machine description (a TOML file with [machine] name = ...): {error}"
+            f"{text}: not a machine description (a TOML file with [machine] name = ...): "
+            f"{type(error).__name__}: {error}"
         ) from None
-    if not isinstance(name, str) or not name.isidentifier():
+    if not isinstance(name, str) or not (name.isascii() and name.isidentifier()):
         raise ValueError(
             f"{text}: [machine] name = {name!r} is not allowed; give a Python identifier "
             "(letters, digits, underscores)"
@@ -314,6 +320,22 @@ def machine(source: str | os.PathLike[str] = DEFAULT_MACHINE) -> MachineInfo:
     return _machine(name if name is not None else resolve_machine_name(source))
 
 
+#: The tuples of names that every generated package exports (``COORDINATE_NAMES``, ...).
+_METADATA = (
+    "coordinate_names",
+    "rate_names",
+    "state_names",
+    "anchor_names",
+    "road_names",
+    "road_rate_names",
+    "disturbance_names",
+    "exogenous_names",
+    "output_names",
+    "parameter_names",
+    "function_names",
+)
+
+
 @functools.cache
 def _machine(name: str) -> MachineInfo:
     """The registry entry of the resolved machine ``name`` (built once per process)."""
@@ -322,25 +344,28 @@ def _machine(name: str) -> MachineInfo:
         path, package = found
     else:
         path, package = _shipped_description(name), _package_name(name)
-    raw = tomllib.loads(path.read_text(encoding="utf-8"))
-    gen = importlib.import_module(package)
+    repair = "make regenerate" if found is None else f"python -m derive {external_source(name)}"
+    try:
+        raw = tomllib.loads(path.read_text(encoding="utf-8"))
+        gen = importlib.import_module(package)
+        metadata: dict[str, Any] = {key: tuple(getattr(gen, key.upper())) for key in _METADATA}
+        metadata["parameter_units"] = dict(gen.PARAMETER_UNITS)
+        metadata["parameter_descriptions"] = dict(gen.PARAMETER_DESCRIPTIONS)
+        functions = metadata["function_names"]
+        missing = [f for f in functions if importlib.util.find_spec(f"{package}.{f}") is None]
+        if missing:
+            raise ImportError(f"no module {', '.join(missing)} of its FUNCTION_NAMES")
+        structure = _structure(raw)
+    except (Exception, SystemExit) as error:
+        raise ValueError(
+            f"machine {name!r}: its generated package {package} or description {path} is broken "
+            f"({type(error).__name__}: {error}); derive it again with `{repair}`"
+        ) from None
     return MachineInfo(
         name=name,
         package=package,
-        coordinate_names=gen.COORDINATE_NAMES,
-        rate_names=gen.RATE_NAMES,
-        state_names=gen.STATE_NAMES,
-        anchor_names=gen.ANCHOR_NAMES,
-        road_names=gen.ROAD_NAMES,
-        road_rate_names=gen.ROAD_RATE_NAMES,
-        disturbance_names=gen.DISTURBANCE_NAMES,
-        exogenous_names=gen.EXOGENOUS_NAMES,
-        output_names=gen.OUTPUT_NAMES,
-        parameter_names=gen.PARAMETER_NAMES,
-        parameter_units=dict(gen.PARAMETER_UNITS),
-        parameter_descriptions=dict(gen.PARAMETER_DESCRIPTIONS),
-        function_names=gen.FUNCTION_NAMES,
+        **metadata,
         description_path=path,
         description_hash=getattr(gen, "DESCRIPTION_HASH", None) or description_hash(path),
-        **_structure(raw),
+        **structure,
     )
