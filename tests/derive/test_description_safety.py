@@ -153,3 +153,17 @@ def test_default_machine_output_is_checked_too(
     err = capsys.readouterr().err
     assert f"{folder}: holds 'my_code.py', which derive did not write" in err
     assert {path.name: path.read_bytes() for path in folder.iterdir()} == files
+
+
+@pytest.mark.parametrize(("label", "data"), [case[:2] for case in CASES], ids=[c[0] for c in CASES])
+def test_runtime_refuses_the_same_files_with_one_line(
+    label: str, data: bytes, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """``--machine FILE`` of each bad file: exit 2, one line naming the file, nothing run."""
+    from loader_model.cli import main
+
+    description = tmp_path / f"{label}.toml"
+    description.write_bytes(data)
+    assert main(["modes", "--machine", str(description)]) == 2
+    err = capsys.readouterr().err
+    assert str(description) in err and err.count("\n") == 1 and "Traceback" not in err, err

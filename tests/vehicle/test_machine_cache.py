@@ -159,7 +159,7 @@ def test_broken_package_exits_2_naming_the_repair(
     description = _description(tmp_path)
     _cache(description, edit)
     params = PARAMS / "compact_wheel_loader.toml"
-    for command in ("modes", "simulate"):
+    for command in ("modes", "simulate", "design"):
         argv = [command, "--machine", str(description), "--params", str(params)]
         assert main(argv) == 2
         err = capsys.readouterr().err
