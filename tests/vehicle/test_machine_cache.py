@@ -166,3 +166,29 @@ def test_broken_package_exits_2_naming_the_repair(
         assert err.count("\n") == 1 and "Traceback" not in err, err
         assert re.search(message, err), err
         assert f"python -m derive {description}" in err, err
+
+
+def test_a_worker_process_verifies_and_imports_the_same_folder(tmp_path: Path) -> None:
+    """A fresh process (as a robustness study's worker) resolves the file to the same cache
+    folder, verifies it and imports it; once the folder is tampered with, it refuses it too."""
+    import subprocess
+    import sys
+
+    description = _description(tmp_path)
+    folder = _cache(description)
+    code = (
+        "import sys\nfrom loader_model.machines import machine\n"
+        "try:\n    print(machine(sys.argv[1]).description_path.parent)\n"
+        "except ValueError as error:\n    print(error)\n"
+    )
+
+    def worker() -> str:
+        command = [sys.executable, "-c", code, str(description)]
+        done = subprocess.run(command, capture_output=True, text=True, check=True, timeout=60)
+        return done.stdout.strip()
+
+    assert worker() == str(folder)
+    marker = tmp_path / "marker"
+    _tamper("added", folder, marker, tmp_path)
+    assert "payload.py: not in the manifest" in worker()
+    assert not marker.exists()
