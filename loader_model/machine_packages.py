@@ -42,6 +42,8 @@ MANIFEST = "MANIFEST.json"
 _COPY = "description.toml"
 _PREFIX = "loader_model_machine_"
 _FORMAT = 1
+#: Owners and permission bits are checked where they exist (not on Windows).
+_POSIX = os.name == "posix" and hasattr(os, "getuid")
 #: Machines loaded from description files in this process: name -> (resolved description path,
 #: module name of its generated package, description hash, the verified cache folder).
 _EXTERNAL: dict[str, tuple[Path, str, str, Path]] = {}
@@ -97,9 +99,9 @@ def _private(path: Path, what: str, inside: bool = False) -> None:
         raise ValueError(f"{path}: {what} cannot be read ({error.strerror})") from None
     if stat.S_ISLNK(info.st_mode):
         raise ValueError(f"{path}: {what} is a symbolic link; the runtime does not follow it")
-    if hasattr(os, "getuid") and info.st_uid != os.getuid():
+    if _POSIX and info.st_uid != os.getuid():
         raise ValueError(f"{path}: {what} belongs to another user (uid {info.st_uid})")
-    if not inside and info.st_mode & (stat.S_IWGRP | stat.S_IWOTH):
+    if _POSIX and not inside and info.st_mode & (stat.S_IWGRP | stat.S_IWOTH):
         raise ValueError(
             f"{path}: {what} is writable by the group or others (mode {oct(info.st_mode & 0o777)})"
         )
@@ -158,7 +160,7 @@ def verify(folder: Path, description: bytes) -> None:
     for parent in (cache_root().parent, cache_root()):
         _private(parent, "the machine cache folder")
     _private(folder, "the generated package's folder")
-    if folder.lstat().st_mode & 0o077:
+    if _POSIX and folder.lstat().st_mode & 0o077:
         raise ValueError(f"{folder}: others may enter the generated package's folder (not 0o700)")
     files = _manifest(folder)
     for name, digest in files.items():
