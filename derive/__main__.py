@@ -17,6 +17,7 @@ write; the package is renamed into place whole (``derive.install``).
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import sys
 import tempfile
 import time
@@ -25,16 +26,18 @@ from pathlib import Path
 
 from derive.description import DescriptionError, available_machines
 from derive.description_checks import MAX_BYTES
-from derive.generate import DEFAULT_MACHINE, generate
-from derive.input_hash import input_hash
 from derive.install import OutputError
-from derive.numeric_models import write_numeric_models
 from loader_model import machine_packages
+
+#: The errors of a derivation that are the user's to fix (printed as one line, exit code 2).
+_USER_ERRORS = (DescriptionError, OutputError, OSError, ValueError, RuntimeError)
 
 
 def _derive_copy(description: Path, data: bytes, output: Path | None) -> Path:
     """Derive the bytes ``data`` of ``description`` (a private copy: the file may change
     meanwhile) into ``output`` or the runtime's cache; returns the folder."""
+    from derive.generate import generate
+
     with tempfile.TemporaryDirectory(prefix="loader-model-description-") as scratch:
         copy = Path(scratch) / description.name
         copy.write_bytes(data)
@@ -59,7 +62,7 @@ def _derive_file(description: Path, output: Path | None) -> int:
         if len(data) > MAX_BYTES:
             raise DescriptionError(description.name, "(file)", f"more than {MAX_BYTES} bytes")
         folder = _derive_copy(description, data, output)
-    except (DescriptionError, OutputError, OSError, ValueError) as error:
+    except _USER_ERRORS as error:
         print(f"python -m derive: {error}", file=sys.stderr)
         return 2
     elapsed = time.perf_counter() - start
@@ -91,10 +94,20 @@ def main(argv: list[str] | None = None) -> int:
         help="skip the default loader's numeric linear models (written with the runtime)",
     )
     args = parser.parse_args(argv)
+    if importlib.util.find_spec("sympy") is None:
+        print(
+            "python -m derive: needs SymPy; install the derive extra: pip install -e '.[derive]'",
+            file=sys.stderr,
+        )
+        return 2
     if args.description is not None:
         if args.machine:
             parser.error("give either a description file or --machine, not both")
         return _derive_file(args.description, args.output)
+    from derive.generate import DEFAULT_MACHINE, generate
+    from derive.input_hash import input_hash
+    from derive.numeric_models import write_numeric_models
+
     output = args.output or Path("generated")
     machines = args.machine or list(available_machines())
     # the default machine first: its files sit beside the other machines' folders
@@ -103,7 +116,7 @@ def main(argv: list[str] | None = None) -> int:
         start = time.perf_counter()
         try:
             names = generate(folder, machine)
-        except (DescriptionError, OutputError) as error:
+        except _USER_ERRORS as error:
             print(f"python -m derive: {error}", file=sys.stderr)
             return 2
         elapsed = time.perf_counter() - start

@@ -167,3 +167,21 @@ def test_runtime_refuses_the_same_files_with_one_line(
     assert main(["modes", "--machine", str(description)]) == 2
     err = capsys.readouterr().err
     assert str(description) in err and err.count("\n") == 1 and "Traceback" not in err, err
+
+
+def test_derive_without_sympy_names_the_extra(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    import derive.__main__ as command
+
+    real = command.importlib.util.find_spec
+    monkeypatch.setattr(
+        command.importlib.util, "find_spec", lambda name: None if name == "sympy" else real(name)
+    )
+    description = tmp_path / "carrier.toml"
+    description.write_text(WHEEL_LOADER, encoding="utf-8")
+    assert derive_main([str(description)]) == 2
+    err = capsys.readouterr().err
+    assert err == (
+        "python -m derive: needs SymPy; install the derive extra: pip install -e '.[derive]'\n"
+    )
