@@ -150,6 +150,13 @@ def install(
             os.rename(folder, old)
         os.rename(staging, folder)
         if old is not None:
+            try:
+                check_output(old)  # nothing of the user's appeared in it meanwhile
+            except OutputError:
+                raise OutputError(
+                    f"{folder}: written; its previous contents are kept in {old} (a file that "
+                    "derive did not write appeared in it during the derivation)"
+                ) from None
             shutil.rmtree(old)
     finally:
         if staging.exists():

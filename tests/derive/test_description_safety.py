@@ -8,6 +8,7 @@ in it: the user's files survive byte for byte.
 
 from __future__ import annotations
 
+import os
 import re
 import time
 from pathlib import Path
@@ -185,3 +186,48 @@ def test_derive_without_sympy_names_the_extra(
     assert err == (
         "python -m derive: needs SymPy; install the derive extra: pip install -e '.[derive]'\n"
     )
+
+
+def test_install_replaces_its_own_package_whole_and_keeps_a_users_late_file(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """derive.install without SymPy: a folder derive wrote is replaced as a whole (a stale file
+    goes); a failed finishing step leaves the old package; a user's file that appears during the
+    derivation is kept in the old folder, named in the error."""
+    from derive.install import GENERATED_MARK, OutputError, install
+
+    folder = tmp_path / "package"
+    old = {"__init__.py": f"{GENERATED_MARK} (x)\nA = 1\n", "stale.py": f"{GENERATED_MARK}\n"}
+    install(folder, old)
+    new = {"__init__.py": f"{GENERATED_MARK} (x)\nA = 2\n"}
+
+    def fail(staging: Path) -> None:
+        raise OSError("disk full")
+
+    with pytest.raises(OSError, match="disk full"):
+        install(folder, new, finish=fail)
+    assert {p.name: p.read_text() for p in folder.iterdir()} == old
+    install(folder, new)
+    assert {p.name: p.read_text() for p in folder.iterdir()} == new
+
+    def late_user_file(staging: Path) -> None:
+        (folder / "mine.txt").write_text("keep", encoding="utf-8")
+
+    with pytest.raises(OutputError, match=r"holds 'mine.txt', which derive did not write; nothing"):
+        install(folder, old, finish=late_user_file)
+    assert {p.name: p.read_text() for p in folder.iterdir()} == {**new, "mine.txt": "keep"}
+    (folder / "mine.txt").unlink()
+    rename = os.rename
+
+    def rename_after_a_user_write(source: Path, target: Path) -> None:
+        if Path(source) == folder:  # the last moment: the user writes, then derive moves it
+            (folder / "late.txt").write_text("keep", encoding="utf-8")
+        rename(source, target)
+
+    monkeypatch.setattr("derive.install.os.rename", rename_after_a_user_write)
+    with pytest.raises(OutputError, match=r"previous contents are kept in .*\.package\.old-"):
+        install(folder, old)
+    kept = [path for path in tmp_path.iterdir() if path.name.startswith(".package.old-")]
+    assert len(kept) == 1 and (kept[0] / "late.txt").read_text() == "keep"
+    assert {p.name: p.read_text() for p in folder.iterdir()} == old
+    assert not [path for path in tmp_path.iterdir() if ".staging-" in path.name]
