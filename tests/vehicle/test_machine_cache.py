@@ -94,6 +94,8 @@ def _tamper(kind: str, folder: Path, marker: Path, tmp_path: Path) -> None:
         shutil.copytree(folder, elsewhere)
         shutil.rmtree(folder)
         folder.symlink_to(elsewhere, target_is_directory=True)
+    elif kind == "no_manifest":  # a foreign folder under the right name
+        (folder / "MANIFEST.json").unlink()
     elif kind == "open_folder":
         folder.chmod(0o755)
     elif kind == "other_user":
@@ -106,6 +108,7 @@ def _tamper(kind: str, folder: Path, marker: Path, tmp_path: Path) -> None:
         ("edited", r"__init__\.py: differs from the manifest"),
         ("added", r"payload\.py: not in the manifest"),
         ("symlink", r"is a symbolic link; the runtime does not follow it"),
+        ("no_manifest", r"MANIFEST\.json: the manifest cannot be read \(No such file"),
         ("open_folder", r"others may enter the generated package's folder \(not 0o700\)"),
         ("other_user", r"belongs to another user \(uid 54321\)"),
     ],
