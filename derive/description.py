@@ -13,10 +13,12 @@ SymPy dependency); the structural parameter order is :func:`structural_parameter
 
 from __future__ import annotations
 
-import tomllib
+import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
+
+from derive.description_checks import DescriptionError, check_entries, read_description, shown
 
 __all__ = [
     "MACHINES_DIR",
@@ -46,14 +48,6 @@ _KEYS = {
     "sensor": {"axes", "label"},
     "parameter": {"unit", "description", "range", "source"},
 }
-
-
-class DescriptionError(ValueError):
-    """A machine description that cannot be built; the message names the entry."""
-
-    def __init__(self, where: str, entry: str, message: str) -> None:
-        super().__init__(f"{where}: {entry}: {message}")
-        self.entry = entry
 
 
 @dataclass(frozen=True)
@@ -309,7 +303,9 @@ def load_machine(source: str | Path) -> Machine:
     if path.suffix != ".toml":
         path = MACHINES_DIR / f"{source}.toml"
     where = path.name
-    raw = _table(where, "(top level)", tomllib.loads(path.read_text(encoding="utf-8")), _KEYS[""])
+    raw = read_description(path)
+    check_entries(where, raw)
+    raw = _table(where, "(top level)", raw, _KEYS[""])
     head = _table(where, "machine", _need(where, "(top level)", raw, "machine"), _KEYS["machine"])
     bodies_raw = _table(
         where, "bodies", _need(where, "(top level)", raw, "bodies"), set(raw["bodies"])
@@ -376,11 +372,20 @@ def check_values(machine: Machine, values: dict[str, dict[str, Any]]) -> None:
         if name not in values:
             raise DescriptionError(where, name, "missing")
         entry = values[name]
+        if not isinstance(entry, dict):
+            raise DescriptionError(where, name, f"{shown(entry)}: give {{ value, unit, source }}")
+        value = entry.get("value")
+        if (
+            isinstance(value, bool)
+            or not isinstance(value, int | float)
+            or not math.isfinite(value)
+        ):
+            raise DescriptionError(where, f"{name}.value", f"{shown(value)}: give a finite number")
         if entry.get("unit") != item.unit:
             raise DescriptionError(
-                where, f"{name}.unit", f"{entry.get('unit')!r}, expected {item.unit!r}"
+                where, f"{name}.unit", f"{shown(entry.get('unit'))}, expected {item.unit!r}"
             )
-        if not entry.get("source"):
+        if not isinstance(entry.get("source"), str) or not entry["source"]:
             raise DescriptionError(where, f"{name}.source", "missing source")
-        if item.range is not None and not item.range[0] <= entry["value"] <= item.range[1]:
-            raise DescriptionError(where, f"{name}.value", f"{entry['value']} outside {item.range}")
+        if item.range is not None and not item.range[0] <= value <= item.range[1]:
+            raise DescriptionError(where, f"{name}.value", f"{value} outside {item.range}")

@@ -6,15 +6,16 @@ the staleness test both use it (the SymForce pattern).
 
 from __future__ import annotations
 
-import shutil
 import subprocess
 import sys
 import tempfile
+from collections.abc import Callable
 from pathlib import Path
 
 from derive.codegen import emit_function
 from derive.functions import function_specs, output_names
 from derive.input_hash import SYMPY_VERSION, input_hash
+from derive.install import check_output, install
 from derive.mechanics import derive_mechanics
 from derive.naming import Naming
 from derive.symbols import DEFAULT_MACHINE, MachineSymbols, machine_symbols
@@ -235,14 +236,29 @@ def _format(directory: Path) -> None:
     subprocess.run([*command, str(directory)], check=True)
 
 
-def generate(output_dir: Path, machine: str = DEFAULT_MACHINE) -> list[str]:
+def generate(
+    output_dir: Path,
+    machine: str = DEFAULT_MACHINE,
+    finish: Callable[[Path], None] | None = None,
+    mode: int | None = None,
+) -> list[str]:
     """Derive ``machine`` (a name in ``derive/machines`` or a description's ``.toml`` path) and
     write its generated files into ``output_dir``.
 
-    The folder's files are replaced as a whole (a stale file from an earlier derivation does not
-    survive), and only once every file has been rendered and formatted, so a failed run leaves it
-    untouched. Sub-folders (other machines' packages, beside the default machine's files) are kept.
-    Returns the file names written.
+    The description and the output folder are checked before anything is derived
+    (:func:`derive.install.check_output`: no symbolic link, no file, no folder holding anything
+    derive did not write). The package is written into a staging folder beside ``output_dir``
+    and renamed into place once every file has been rendered and formatted (a failed run leaves
+    the old package as it was); the default machine's files are updated one by one, keeping the
+    other machines' sub-folders beside them. ``finish`` and ``mode`` are passed to
+    :func:`derive.install.install`. Returns the file names written.
+
+    Raises
+    ------
+    DescriptionError
+        For a bad description, naming the entry.
+    OutputError
+        For an output folder that derive may not write into, naming it.
     """
     import sympy
 
@@ -251,21 +267,17 @@ def generate(output_dir: Path, machine: str = DEFAULT_MACHINE) -> list[str]:
             f"generated/ is owned by sympy=={SYMPY_VERSION}, found {sympy.__version__}; "
             "install the derive extra (pip install -e '.[derive]')"
         )
-    machine_symbols(machine)  # a bad description fails here, before anything is derived
-    files = _render_files(machine)
     output_dir = Path(output_dir)
+    shared = machine == DEFAULT_MACHINE
+    machine_symbols(machine)  # a bad description fails here, before anything is derived
+    check_output(output_dir, shared)
+    files = _render_files(machine)
     with tempfile.TemporaryDirectory(prefix="loader-model-generated-") as scratch:
         staging = Path(scratch) / "generated"
         staging.mkdir()
         for name, text in files.items():
             (staging / name).write_text(text, encoding="utf-8")
         _format(staging)
-        output_dir.mkdir(parents=True, exist_ok=True)
-        for stale in [*output_dir.glob("*.py"), output_dir / "__pycache__"]:
-            if stale.is_dir():
-                shutil.rmtree(stale)
-            elif stale.exists():
-                stale.unlink()
-        for path in staging.iterdir():
-            shutil.copy2(path, output_dir / path.name)
+        texts = {name: (staging / name).read_text(encoding="utf-8") for name in files}
+    install(output_dir, texts, shared, finish, mode)
     return sorted(files)

@@ -2,7 +2,23 @@
 
 from __future__ import annotations
 
+import os
+from collections.abc import Iterator
+
 import pytest
+
+
+@pytest.fixture(scope="session", autouse=True)
+def machine_cache(tmp_path_factory: pytest.TempPathFactory) -> Iterator[None]:
+    """The runtime's machine cache ($XDG_CACHE_HOME) in a temporary folder, not the user's."""
+    before = os.environ.get("XDG_CACHE_HOME")
+    os.environ["XDG_CACHE_HOME"] = str(tmp_path_factory.mktemp("cache"))
+    yield
+    if before is None:
+        del os.environ["XDG_CACHE_HOME"]
+    else:
+        os.environ["XDG_CACHE_HOME"] = before
+
 
 #: A plausible 3.5 t skid-steer whose points follow the layout the paper's signs assume:
 #: A ahead of and below H, B behind and below H, C and D behind and above H, G ahead of and

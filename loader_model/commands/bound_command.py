@@ -131,8 +131,10 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
 
     if args.bound not in BOUND_KINDS:
         raise ValueError(f"--bound {args.bound!r}: allowed: {', '.join(BOUND_KINDS)}")
-    if args.duration is not None and not args.duration > 0:
-        raise ValueError(f"--duration {args.duration!r}: allowed: a time > 0 s")
+    if args.duration is not None and not 0 < args.duration < float("inf"):
+        raise ValueError(f"--duration {args.duration!r}: allowed: a finite time > 0 s")
+    if args.factors is not None and not args.pump_sizing:
+        raise ValueError(f"--factors {args.factors!r}: allowed only with --pump-sizing")
     if args.pump_sizing:
         return _pump_sizing(args, written)
     names = _controllers(args.controllers)

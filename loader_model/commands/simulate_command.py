@@ -30,6 +30,7 @@ from loader_model.commands.common import (
 )
 
 if TYPE_CHECKING:
+    from loader_model.simulation.courses import Course
     from loader_model.simulation.result import Event
     from loader_model.simulation.validity_check import ModelValidityError
 
@@ -106,17 +107,40 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _course(text: str, speed_kmh: float, duration_s: float | None, seed: int):
-    from loader_model.simulation.courses import iso8608_course, paper_course, single_obstacle_course
+    from loader_model.simulation.courses import (
+        PAPER_SPACING_M,
+        iso8608_course,
+        paper_course,
+        single_obstacle_course,
+    )
 
     if text == "paper":
+        if speed_kmh not in PAPER_SPACING_M:
+            raise ValueError(
+                f"--speed {speed_kmh:g}: allowed with --course paper: "
+                f"{' or '.join(f'{v:g}' for v in PAPER_SPACING_M)} km/h (the paper's courses)"
+            )
         return paper_course(speed_kmh)
     if text == "single":
         return single_obstacle_course(speed_kmh)
-    name, separator, road_class = text.partition(":")
-    if name == "iso8608" and separator and road_class:
-        length_m = 200.0 if duration_s is None else speed_kmh / 3.6 * duration_s + 20.0
-        return iso8608_course(road_class.strip().upper(), speed_kmh, length_m=length_m, seed=seed)
-    raise ValueError(f"--course must be paper, single or iso8608:CLASS; got {text!r}")
+    from loader_model.simulation.iso8608 import CLASS_PSD_M3
+
+    name, _, road_class = text.partition(":")
+    if name != "iso8608" or road_class.strip().upper() not in CLASS_PSD_M3:
+        classes = f"iso8608:{min(CLASS_PSD_M3)} to iso8608:{max(CLASS_PSD_M3)}"
+        raise ValueError(f"--course must be paper, single or {classes}; got {text!r}")
+    length_m = 200.0 if duration_s is None else speed_kmh / 3.6 * duration_s + 20.0
+    return iso8608_course(road_class.strip().upper(), speed_kmh, length_m=length_m, seed=seed)
+
+
+def _check_drive(course: Course, speed_kmh: float) -> None:
+    """Refuse a course that takes more than an hour at ``--speed`` (without ``--duration``)."""
+    drive_s = course.duration_s(0.0)  # at least this long, whatever the machine's wheelbase
+    if drive_s > 3600.0:
+        raise ValueError(
+            f"--speed {speed_kmh:g} km/h: the course takes {drive_s:.3g} s at that speed; "
+            "allowed: a drive of at most 3600 s (a higher --speed, or give --duration)"
+        )
 
 
 def run(args: argparse.Namespace) -> int:
@@ -160,6 +184,8 @@ def run(args: argparse.Namespace) -> int:
     law = "skyhook" if settings_file is not None else args.controller
     machine = machine_from_arguments(args).name
     course = _course(args.course, args.speed, args.duration, args.seed)
+    if args.duration is None:
+        _check_drive(course, args.speed)
     if args.compare:
         return _compare(args, machine, course, settings_file)
     scenario = resolve_scenario(

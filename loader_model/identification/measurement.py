@@ -227,6 +227,33 @@ def _check_time(time: np.ndarray, lines: list[int], origin: str) -> None:
         )
 
 
+#: Largest pressure magnitude read [Pa] (10 000 bar, ten times any mobile hydraulics).
+MAX_PRESSURE_PA = 1e9
+
+
+def _check_values(
+    data: dict[str, np.ndarray], header: list[str], found: dict[str, tuple[int, float]],
+    lines: list[int], origin: str,
+) -> None:  # fmt: skip
+    """Refuse a negative load mass and an implausible pressure (a wrong unit in the header)."""
+    negative = np.flatnonzero(data["m_load"] < 0.0)
+    if negative.size:
+        i = int(negative[0])
+        raise ValueError(
+            f"{origin}: column 'm_load', line {lines[i]}: {data['m_load'][i]:g} kg; allowed: a "
+            "mass >= 0 kg"
+        )
+    for name in ("p_A", "p_B"):
+        high = np.flatnonzero(np.abs(data[name]) > MAX_PRESSURE_PA)
+        if high.size:
+            i = int(high[0])
+            raise ValueError(
+                f"{origin}: column {header[found[name][0]].strip()!r}, line {lines[i]}: "
+                f"{data[name][i]:.4g} Pa; allowed: at most {MAX_PRESSURE_PA:g} Pa (10 000 bar) "
+                "in magnitude (is the unit in the header right?)"
+            )
+
+
 def read_measurement_csv(path: str | Path) -> MeasurementRecord:
     """Read and validate an identification record (format in the module docstring).
 
@@ -235,7 +262,8 @@ def read_measurement_csv(path: str | Path) -> MeasurementRecord:
     ValueError
         Naming column, line and value: missing column, missing or unknown unit, a cell that is
         not a finite number, fewer than :data:`MIN_ROWS` rows, time not strictly increasing,
-        sampling intervals off the mean by more than :data:`TIME_JITTER_TOLERANCE`.
+        sampling intervals off the mean by more than :data:`TIME_JITTER_TOLERANCE`, a negative
+        load mass, a pressure above :data:`MAX_PRESSURE_PA` (a wrong unit in the header).
     """
     origin = str(path)
     path = Path(path)
@@ -260,6 +288,7 @@ def read_measurement_csv(path: str | Path) -> MeasurementRecord:
         for name, (index, factor) in found.items()
     }
     _check_time(data["time"], lines, origin)
+    _check_values(data, header, found, lines, origin)
     return MeasurementRecord(
         time_s=data["time"],
         position_m=data.get("x_cyl"),

@@ -219,6 +219,13 @@ def robust_linear_fit(
     if np.any(norms == 0.0):
         raise ValueError(f"a regressor is identically zero: {np.asarray(names)[norms == 0.0]}")
     x = design / norms
+    rank = np.linalg.matrix_rank(x)
+    if rank < x.shape[1]:
+        raise ValueError(
+            f"the regressors {', '.join(names)} are linearly dependent (rank {rank} of "
+            f"{x.shape[1]}): the signals they are built from do not vary independently in this "
+            "record (a constant pressure, position or flow); record a run that moves them"
+        )
     beta = np.linalg.lstsq(x, y, rcond=None)[0]
     weights = np.ones_like(y)
     scale = float(np.sqrt(np.sum((y - x @ beta) ** 2) / (y.size - x.shape[1])))

@@ -132,6 +132,8 @@ def parse_distribution(spec: Any, key: str, unit: str, allowed: Range) -> Distri
         raise ValueError(f"{key}.low = {low:g}: a loguniform distribution needs low > 0")
     if kind == "normal" and not values["std"] > 0:
         raise ValueError(f"{key}.std = {values['std']:g}: allowed: a number > 0")
+    if kind == "normal" and not low <= values["mean"] <= high:
+        raise ValueError(f"{key}.mean = {values['mean']:g}: allowed: from low to high")
     if kind == "triangular" and not low <= values["mode"] <= high:
         raise ValueError(f"{key}.mode = {values['mode']:g}: allowed: from low to high")
     return Distribution(

@@ -29,9 +29,12 @@ def test_simulate_writes_series_and_plot(tmp_path, capsys) -> None:
 @pytest.mark.parametrize(
     ("arguments", "message"),
     [
-        (["--course", "paper", "--speed", "12"], "paper's speeds"),
+        (
+            ["--course", "paper", "--speed", "12"],
+            "--speed 12: allowed with --course paper: 9 or 18",
+        ),
         (["--course", "moon"], "--course must be"),
-        (["--course", "iso8608:Z"], "road_class"),
+        (["--course", "iso8608:Z"], "--course must be paper, single or iso8608:A to iso8608:H"),
         (["--duration", "0"], "--duration"),
         (["--output", "run.txt"], "allowed"),
         (["--load", "no-such-file"], "neither a load case"),

@@ -224,17 +224,18 @@ def test_linearisation_matches_finite_differences(generated: tuple[ModuleType, P
 
 
 def test_runtime_refuses_a_description_without_its_generated_folder(
-    generated: tuple[ModuleType, Path],
+    generated: tuple[ModuleType, Path], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """The runtime binds a description outside the package only through the generated package
-    beside it (``<stem>_generated/``, written by ``python -m derive <file>``); this fixture was
-    derived into another folder, so it is refused with that command."""
+    """The runtime binds a description outside the package only through its generated package in
+    the runtime's own cache (written by ``python -m derive <file>``); this fixture was derived
+    into another folder only (an empty cache here), so it is refused with that command."""
     from loader_model.machines import machine
 
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "empty_cache"))
     _, description = generated
     with pytest.raises(
         ValueError,
-        match=r"no generated package in .*three_axle_cab_generated/; "
-        r"derive it with `python -m derive .*three_axle_cab.toml`",
+        match=r"no generated package for this version of the file \(none in .*loader-model/"
+        r"machines/[0-9a-f]{40}/\); derive it with `python -m derive .*three_axle_cab.toml`",
     ):
         machine(description)

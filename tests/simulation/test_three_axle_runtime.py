@@ -1,7 +1,7 @@
 """A three-axle machine from a description file outside the package, through the runtime (issue 23).
 
 The fixture of ``tests/derive/three_axle_cab.py`` (axles A, B, R 1.5 m apart, a cab on a sliding
-mount) is derived by ``python -m derive <file>`` into ``<stem>_generated/`` beside the file and
+mount) is derived by ``python -m derive <file>`` into the runtime's machine cache and
 loaded by ``--machine <file>``; its flat parameter file is written here from the fixture's values
 (one 80 mm lift cylinder, the skid-steer's oil). Checked: it rests at its static equilibrium on
 a level road, each axle's contact force answers the board its own distance behind the front axle
@@ -64,15 +64,16 @@ def _parameter_text(units: dict[str, str], computed: set[str]) -> str:
 
 @pytest.fixture(scope="module")
 def files(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, Path]:
-    """The description (derived beside itself by ``python -m derive``) and its parameter file."""
+    """The description (derived into the cache by ``python -m derive``) and its parameter file."""
     from derive.__main__ import main as derive_main
-    from loader_model.machines import machine
+    from loader_model.machines import generated_folder, machine
 
     root = tmp_path_factory.mktemp("machine")
     description = root / "three_axle_cab.toml"
     description.write_text(DESCRIPTION, encoding="utf-8")
     assert derive_main([str(description)]) == 0
-    assert (root / "three_axle_cab_generated" / "__init__.py").is_file()
+    assert (generated_folder(description) / "__init__.py").is_file()
+    assert [path.name for path in root.iterdir()] == ["three_axle_cab.toml"]  # nothing beside it
     info = machine(description)
     params = root / "three_axle_cab_parameters.toml"
     params.write_text(_parameter_text(info.parameter_units, set(info.static_names)), "utf-8")
@@ -184,11 +185,11 @@ def test_missing_or_stale_generated_package_is_refused_naming_the_command(
 
     _, params = files
     elsewhere = tmp_path / "three_axle_cab.toml"
-    elsewhere.write_text(DESCRIPTION, encoding="utf-8")
+    elsewhere.write_text(DESCRIPTION + "# another version\n", encoding="utf-8")
     argv = ["simulate", "--params", str(params), "--duration", "4", "--machine", str(elsewhere)]
     assert main(argv) == 2
     err = capsys.readouterr().err
-    assert f"{elsewhere}: machine 'three_axle_cab' has no generated package in " in err
+    assert f"{elsewhere}: machine 'three_axle_cab' has no generated package for this " in err
     assert f"`python -m derive {elsewhere}`" in err and "Traceback" not in err
     stale = files[0].with_name("three_axle_cab.toml")
     original = stale.read_text(encoding="utf-8")
@@ -198,7 +199,7 @@ def test_missing_or_stale_generated_package_is_refused_naming_the_command(
     finally:
         stale.write_text(original, encoding="utf-8")
     err = capsys.readouterr().err
-    assert "was derived from another version of this description" in err
+    assert "has no generated package for this version of the file" in err
     assert f"`python -m derive {stale}`" in err and "Traceback" not in err
 
 

@@ -11,7 +11,7 @@ import pytest
 import loader_model_generated as skid
 import loader_model_generated.compact_wheel_loader as wl
 from derive.description import MACHINES_DIR
-from loader_model.machines import list_machines, machine, resolve_machine_name
+from loader_model.machines import generated_folder, list_machines, machine, resolve_machine_name
 from loader_model.parameters.machine_files import (
     default_machine_parameters,
     load_machine_parameters,
@@ -65,11 +65,12 @@ def test_registry_errors(tmp_path: Path) -> None:
         machine("tractor")
     other = tmp_path / "tractor.toml"
     other.write_text('[machine]\nname = "tractor"\n')
-    folder = tmp_path / "tractor_generated"
+    folder = generated_folder(other)
+    assert not folder.is_relative_to(tmp_path)  # the runtime's cache, never beside the file
     with pytest.raises(
         ValueError,
-        match=rf"'tractor' has no generated package in {folder}/; derive it with "
-        rf"`python -m derive {other}`",
+        match=rf"'tractor' has no generated package for this version of the file \(none in "
+        rf"{folder}/\); derive it with `python -m derive {other}`",
     ):
         machine(other)
     changed = tmp_path / "wl.toml"
