@@ -1,4 +1,4 @@
-"""Generated packages of machine descriptions outside the package (issue 23).
+"""Generated packages of machine descriptions outside the package.
 
 A description ``path/to/<stem>.toml`` outside ``derive/machines`` is derived by
 ``python -m derive path/to/<stem>.toml`` into ``path/to/<stem>_generated/`` beside it

@@ -30,7 +30,7 @@ __all__ = [
     "write_tables",
 ]
 
-#: Table 6 fidelity criterion of issue 13: |model − paper| within this many percentage points.
+#: Table 6 fidelity criterion: |model − paper| within this many percentage points.
 FIDELITY_POINTS = 10.0
 
 

@@ -235,8 +235,8 @@ def _markdown(options, tables, within, count, lifts, timings, budget, appendix) 
         "equal_var=False). The paper does not name its t-test.\n",
         markdown_table(tables["table6"]) + "\n",
         f"**Fidelity: {within} of {count} cells within {FIDELITY_POINTS:g} percentage points "
-        "of the paper** with the sourced parameter files (issue 21 asks for at least 10 with "
-        "the calibrated set; the fidelity budget below measures each step).\n",
+        "of the paper** with the sourced parameter files (the fidelity budget below "
+        "measures each modelling step).\n",
         "Absolute levels: mean a_total per condition beside ISO 2631-1 Annex C.2.3's likely "
         "reactions (public transport; the paper's k = 1, 1, 0.4):\n",
         markdown_table(tables["comfort"]) + "\n",

@@ -1,4 +1,4 @@
-"""Robustness study (issue 14): ride control over sampled plants, roads, speeds and bucket loads.
+"""Robustness study: ride control over sampled plants, roads, speeds and bucket loads.
 
 A study file (TOML, :mod:`~loader_model.robustness.study`) names the uncertain parameters by
 their parameter-file paths with bounded distributions; :func:`run_study` runs every controller on

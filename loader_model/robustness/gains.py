@@ -15,7 +15,7 @@ study's class at its first nominal speed. The stability margin of a gain on a sa
 real part of the closed-loop poles of the plant and skyhook (the design plant's loop poles: the
 sampled plant linearised at its static equilibrium); positive means unstable.
 
-Another machine (``[study] machine``, issue 23): the same methods on its comfort plants, built
+Another machine (``[study] machine``): the same methods on its comfort plants, built
 from its shipped flat parameter file (nominal) or from the sample's parameters
 (:func:`~loader_model.robustness.machine_study.machine_sample_plant`, robust). Its gains, like
 those of ``design --machine``, may exceed a settings file's ±100; the study hands them to the

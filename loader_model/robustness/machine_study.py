@@ -1,4 +1,4 @@
-"""A robustness study of another described machine (issue 23): its parameters and its plant.
+"""A robustness study of another described machine: its parameters and its plant.
 
 With ``[study] machine = "compact_wheel_loader"`` the uncertain parameters are named by the
 machine's flat parameter file (:mod:`loader_model.parameters.machine_files`): ``model.<name>``
