@@ -1,6 +1,9 @@
 """Sphinx configuration of the loader-model documentation (`make docs`)."""
 
+import importlib.util
 import re
+import shutil
+from pathlib import Path
 
 import loader_model
 
@@ -37,7 +40,28 @@ myst_enable_extensions = ["dollarmath"]
 
 html_theme = "furo"
 html_title = f"loader-model {release}"
-# Offline build: no intersphinx, MathJax is loaded by the browser when a page is opened.
+# Offline build: no intersphinx, and MathJax is served from the built site itself (no CDN). The
+# docs extra installs a copy of MathJax 3.2.2 (PyPI: django-static-mathjax, package ``mathjax``);
+# its single-file SVG build is copied into the site's _static folder.
+_MATHJAX_FILE = "tex-svg.js"
+
+
+def _mathjax_static_dir() -> str:
+    spec = importlib.util.find_spec("mathjax")
+    if spec is None or not spec.submodule_search_locations:
+        raise RuntimeError(
+            "MathJax is not installed: `pip install -e '.[docs]'` installs it "
+            "(django-static-mathjax), so that equations render offline"
+        )
+    source = Path(spec.submodule_search_locations[0]) / "static" / "mathjax" / "es5" / _MATHJAX_FILE
+    target = Path(__file__).parent / "_build" / "mathjax_static" / "mathjax"
+    target.mkdir(parents=True, exist_ok=True)
+    shutil.copyfile(source, target / _MATHJAX_FILE)
+    return str(target.parent)
+
+
+html_static_path = [_mathjax_static_dir()]
+mathjax_path = f"mathjax/{_MATHJAX_FILE}"
 
 autodoc_default_options["ignore-module-all"] = True  # each object once, on its defining module
 

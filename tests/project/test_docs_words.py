@@ -3,8 +3,9 @@
 Covers the files: the guide and examples (docs/), the README, the parameter files shipped with the
 package, and the docstrings and comments of ``loader_model`` and ``derive``. The command line
 (``loader_model/cli.py``, ``loader_model/commands/``: their module docstrings are the ``--help``
-descriptions) is checked through its ``--help`` output by the command-line tests. A page cites the paper (Eq., Table, Fig.),
-ISO standards, the guide's pages (the errata page for "errata N") and the CHANGELOG.
+descriptions) is checked through its ``--help`` output by the command-line tests. A page cites
+the paper (Eq., Table, Fig.), ISO standards, the guide's pages (the errata page for "errata N")
+and the CHANGELOG.
 """
 
 from __future__ import annotations
@@ -65,7 +66,7 @@ def _files() -> list[Path]:
     code = sorted((ROOT / "loader_model").rglob("*.py")) + sorted((ROOT / "derive").rglob("*.py"))
     command_line = ROOT / "loader_model" / "commands"
     code = [p for p in code if command_line not in p.parents and p.name != "cli.py"]
-    return sorted(docs) + [ROOT / "README.md"] + data + code
+    return [*sorted(docs), ROOT / "README.md", *data, *code]
 
 
 def _id(path: Path) -> str:
