@@ -103,8 +103,8 @@ class ModelVariant:
 #: The model as built: circuit states, seat pad and occupant, tandem-cam tyres, Table 3 with
 #: k_φ = +0.22, the shipped parameter files.
 AS_BUILT = ModelVariant()
-#: The model before the fidelity budget's steps: Table 5's flow as a cylinder leak for every controller, the seat on
-#: the rigid chassis, rigid-wheel tyres, Table 3 as printed.
+#: The model before the fidelity budget's steps: Table 5's flow as a cylinder leak for every
+#: controller, the seat on the rigid chassis, rigid-wheel tyres, Table 3 as printed.
 AS_IT_WAS = ModelVariant(
     label="as it was",
     holding_valves=False,
