@@ -29,7 +29,9 @@ def _pages() -> list:
 
 def test_task_pages_have_code():
     with_code = {p.stem for p in GUIDE.glob("*.md") if python_blocks(p.read_text("utf-8"))}
-    assert MUST_HAVE_CODE <= with_code, f"pages without a python block: {MUST_HAVE_CODE - with_code}"
+    assert MUST_HAVE_CODE <= with_code, (
+        f"pages without a python block: {MUST_HAVE_CODE - with_code}"
+    )
 
 
 @pytest.mark.parametrize("page", _pages())
