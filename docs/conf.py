@@ -43,7 +43,7 @@ html_title = f"loader-model {release}"
 # Offline build: no intersphinx, and MathJax is served from the built site itself (no CDN). The
 # docs extra installs a copy of MathJax 3.2.2 (PyPI: django-static-mathjax, package ``mathjax``);
 # its single-file SVG build is copied into the site's _static folder.
-_MATHJAX_FILE = "tex-svg.js"
+_MATHJAX_FILE = "tex-svg-full.js"
 
 
 def _mathjax_static_dir() -> str:
