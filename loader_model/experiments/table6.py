@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -104,7 +105,7 @@ def run_trials(
     specs: Sequence[TrialSpec],
     jobs: int = 2,
     progress: bool = True,
-    meanwhile: Callable[[], None] | None = None,
+    meanwhile: Callable[[], None] | Sequence[tuple[str, Callable[[], None]]] | None = None,
     keep_failures: bool = False,
 ) -> list[TrialOutcome]:
     """Run ``specs`` on ``jobs`` processes (1: in this process), in the order given.
@@ -114,7 +115,9 @@ def run_trials(
     BLAS thread per process (:func:`_one_blas_thread`). The workers end with this process
     (:func:`~loader_model.io.processes.worker_pool`): an interrupt or an error stops them at once.
     ``meanwhile`` runs in this process while the workers simulate (or after the trials, with
-    ``jobs`` = 1), so that the calling process does useful work instead of waiting. With
+    ``jobs`` = 1), so that the calling process does useful work instead of waiting; given as
+    (label, step) pairs, each step counts as one task of the progress bar beside the trials, and
+    the trials finished meanwhile are counted after each step, so the bar moves while both run. With
     ``keep_failures`` a trial the simulator stops comes back with a NaN a_total (the reason in
     its ``weighted_rms["failed"]``) instead of stopping the run.
     """
@@ -128,12 +131,36 @@ def run_trials(
     batches = [[specs[i] for i in indices] for indices in groups.values()]
     outcomes: dict[TrialSpec, TrialOutcome] = {}
     chunk = _run_chunk_keeping_failures if keep_failures else _run_chunk
-    bar = tqdm(total=len(specs), desc="Table 6 trials", unit="trial", disable=not progress)
+    if meanwhile is None:
+        steps: list[tuple[str, Callable[[], None]]] = []
+    elif callable(meanwhile):
+        steps = [("", meanwhile)]
+    else:
+        steps = list(meanwhile)
+    bar = tqdm(
+        total=len(specs) + len(steps),
+        desc=f"{len(specs)} trials" + (f" + {len(steps)} report steps" if steps else ""),
+        unit="task",
+        disable=not progress,
+    )
+    collected: set[int] = set()
 
     def collect(results: list[TrialOutcome]) -> None:
         for outcome in results:
             outcomes[outcome.spec] = outcome
         bar.update(len(results))
+
+    def run_steps(futures: Sequence[Any] = ()) -> None:
+        for label, step in steps:
+            bar.set_postfix_str(label, refresh=True)
+            step()
+            bar.update(1)
+            for index, future in enumerate(futures):  # trials that finished meanwhile
+                if index not in collected and future.done():
+                    collected.add(index)
+                    collect(future.result())
+        if steps:
+            bar.set_postfix_str("trials")
 
     try:
         if jobs == 1:
@@ -142,14 +169,13 @@ def run_trials(
             with threadpool_limits(1):
                 for batch in batches:
                     collect(chunk(batch))
-            if meanwhile is not None:
-                meanwhile()
+            run_steps()
         else:
             with worker_pool(jobs, initializer=_one_blas_thread) as pool:
                 futures = [pool.submit(chunk, batch) for batch in batches]
-                if meanwhile is not None:
-                    meanwhile()
-                for future in pool.completed(futures):
+                run_steps(futures)
+                pending = [f for i, f in enumerate(futures) if i not in collected]
+                for future in pool.completed(pending):
                     collect(future.result())
     finally:
         bar.close()
