@@ -91,5 +91,44 @@ def _escape_bars(app, what, name, obj, options, lines):
         lines[i] = "".join(p if k % 2 else p.replace("|", r"\|") for k, p in enumerate(parts))
 
 
+# The worked examples are executed when the guide is built: each docs/examples/NAME.py runs in its
+# own folder under _build/examples/NAME, and its printed output and the PNG figures it writes are
+# appended to the page (the page itself shows the code, so it reads on GitHub too). An example
+# that fails fails the build.
+_EXAMPLES = Path(__file__).parent / "examples"
+_EXAMPLE_RUNS = Path(__file__).parent / "_build" / "examples"
+
+
+def _run_example(name: str) -> str:
+    import os
+    import subprocess
+    import sys
+
+    script = _EXAMPLES / f"{name}.py"
+    folder = _EXAMPLE_RUNS / name
+    shutil.rmtree(folder, ignore_errors=True)
+    folder.mkdir(parents=True)
+    env = {**os.environ, "MPLBACKEND": "Agg"}
+    run = subprocess.run(
+        [sys.executable, str(script)], cwd=folder, env=env, capture_output=True, text=True
+    )
+    if run.returncode != 0:
+        raise RuntimeError(
+            f"docs/examples/{name}.py failed while building the guide:\n{run.stderr}"
+        )
+    parts = ["\n## Output\n", "```text\n" + run.stdout.rstrip() + "\n```\n"]
+    for figure in sorted(folder.glob("*.png")):
+        parts.append(f"![{figure.stem}](/_build/examples/{name}/{figure.name})\n")
+    return "\n".join(parts)
+
+
+def _append_example_output(app, docname, source):
+    if docname.startswith("examples/") and docname != "examples/index":
+        name = docname.split("/", 1)[1]
+        if (_EXAMPLES / f"{name}.py").is_file():
+            source[0] += "\n" + _run_example(name)
+
+
 def setup(app):
     app.connect("autodoc-process-docstring", _escape_bars)
+    app.connect("source-read", _append_example_output)

@@ -210,7 +210,7 @@ def comfort_rows(outcomes: Sequence[Any], controllers: Sequence[str]) -> Rows:
         [
             "speed",
             "load",
-            *(f"{c} a_total [m/s²] (min/day to A(8) action value)" for c in controllers),
+            *(f"{c} [m/s²] (min)" for c in controllers),
         ]
     ]
     for speed, load in sorted({(s, ld) for s, ld, _ in totals}):
@@ -242,6 +242,6 @@ def comfort_summary(outcomes: Sequence[Any]) -> str:
         counts[reaction] = counts.get(reaction, 0) + 1
     bands = "; ".join(f"{n} of {len(means)} {reaction!r}" for reaction, n in counts.items())
     return (
-        f"Mean a_total from {min(means):.2f} to {max(means):.2f} m/s². ISO 2631-1 Annex C.2.3's "
+        f"mean a_total from {min(means):.2f} to {max(means):.2f} m/s². ISO 2631-1 Annex C.2.3's "
         f"likely reactions (public transport; the paper's k = 1, 1, 0.4): {bands}. "
     )

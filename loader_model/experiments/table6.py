@@ -116,8 +116,8 @@ def run_trials(
     (:func:`~loader_model.io.processes.worker_pool`): an interrupt or an error stops them at once.
     ``meanwhile`` runs in this process while the workers simulate (or after the trials, with
     ``jobs`` = 1), so that the calling process does useful work instead of waiting; given as
-    (label, step) pairs, each step counts as one task of the progress bar beside the trials, and
-    the trials finished meanwhile are counted after each step, so the bar moves while both run. With
+    (label, step) pairs, each step counts as one task of the progress bar beside the trials, which
+    count as their batches finish, so the bar moves while both run. With
     ``keep_failures`` a trial the simulator stops comes back with a NaN a_total (the reason in
     its ``weighted_rms["failed"]``) instead of stopping the run.
     """
@@ -143,24 +143,28 @@ def run_trials(
         unit="task",
         disable=not progress,
     )
-    collected: set[int] = set()
 
-    def collect(results: list[TrialOutcome]) -> None:
+    def collect(results: list[TrialOutcome], count: bool = True) -> None:
         for outcome in results:
             outcomes[outcome.spec] = outcome
-        bar.update(len(results))
+        if count:
+            bar.update(len(results))
 
-    def run_steps(futures: Sequence[Any] = ()) -> None:
+    def run_steps() -> None:
         for label, step in steps:
             bar.set_postfix_str(label, refresh=True)
             step()
             bar.update(1)
-            for index, future in enumerate(futures):  # trials that finished meanwhile
-                if index not in collected and future.done():
-                    collected.add(index)
-                    collect(future.result())
         if steps:
             bar.set_postfix_str("trials")
+
+    def counted(size: int) -> Callable[[Any], None]:
+        # runs in the pool's thread as a batch finishes, so the bar moves during a long step
+        def done(future: Any) -> None:
+            if not future.cancelled() and future.exception() is None:
+                bar.update(size)
+
+        return done
 
     try:
         if jobs == 1:
@@ -173,10 +177,11 @@ def run_trials(
         else:
             with worker_pool(jobs, initializer=_one_blas_thread) as pool:
                 futures = [pool.submit(chunk, batch) for batch in batches]
-                run_steps(futures)
-                pending = [f for i, f in enumerate(futures) if i not in collected]
-                for future in pool.completed(pending):
-                    collect(future.result())
+                for future, batch in zip(futures, batches, strict=True):
+                    future.add_done_callback(counted(len(batch)))
+                run_steps()
+                for future in pool.completed(futures):
+                    collect(future.result(), count=False)
     finally:
         bar.close()
     return [outcomes[spec] for spec in specs]
