@@ -5,6 +5,8 @@ import re
 import shutil
 from pathlib import Path
 
+from sphinx.ext import autosummary
+
 import loader_model
 
 project = "loader-model"
@@ -64,6 +66,18 @@ html_static_path = [_mathjax_static_dir()]
 mathjax_path = f"mathjax/{_MATHJAX_FILE}"
 
 autodoc_default_options["ignore-module-all"] = True  # each object once, on its defining module
+
+# The summary tables of the API pages show a docstring's first sentence; the docstrings cite the
+# paper as "Eq. 43", "Fig. 13", "Tables 4, 5", so those abbreviations do not end a sentence.
+autosummary.WELL_KNOWN_ABBREVIATIONS = (
+    *autosummary.WELL_KNOWN_ABBREVIATIONS,
+    "Eq.",
+    "Eqs.",
+    "Fig.",
+    "Figs.",
+    "No.",
+    "cf.",
+)
 
 
 # The docstrings are written to be read as plain text too (``help()``), with |x| for absolute
