@@ -116,7 +116,7 @@ def _fig14_note(cells) -> str:
 
 def _figure_section(notes: dict[str, str]) -> list[str]:
     return [
-        f"![{caption}]({name})\n\n*{caption}.{notes.get(name, '')}*\n"
+        f"![{caption}]({name})\n\n*{caption}.{notes[name] + '.' if notes.get(name) else ''}*\n"
         for name, caption in FIGURES.items()
     ]
 
