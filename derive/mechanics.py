@@ -21,7 +21,7 @@ coordinates (Eq. 26). The equations are
 
 (Eq. 25 with gravity kept and the disturbances of Eq. 5-7 at H; K_e, D_e of the internal
 spring-dampers, :mod:`derive.elements`). The generalised forces of point forces are J_P(p)ᵀ F_P
-with J_P = ∂r_P/∂p (virtual work; moments are r_x F_y − r_y F_x with signed coordinates, DESIGN.md
+with J_P = ∂r_P/∂p (virtual work; moments are r_x F_y − r_y F_x with signed coordinates,
 errata 2). The inertia terms follow Kane's form Σ m Jᵀ a at each centre of gravity, which gives
 M = Σ m J_Gᵀ J_G + Σ J e eᵀ (e picks a body's angle) and C = Σ m J_Gᵀ (d/dt J_G) ṗ.
 """

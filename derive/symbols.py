@@ -5,11 +5,11 @@ skid-steer), the inputs and the parameter vector, all read from a machine descri
 (:mod:`derive.description`). ``generated/`` exports these orders and ``loader_model.parameters.sets``
 maps named parameter sets onto them; a test proves the two agree.
 
-Frames and signs (DESIGN.md, "The model"): global frame at the chassis centre of gravity H at static
+Frames and signs (guide page "Model"): global frame at the chassis centre of gravity H at static
 equilibrium, x forward (towards the bucket), y up, angles counter-clockwise (nose-up pitch positive).
 Every point is given as (x, y) in the chassis frame relative to H, with the boom at its operating
 angle, i.e. in the configuration p = 0. Signed coordinates replace the paper's abs()-based distances
-of Eq. 8 and 9 (DESIGN.md errata 2). Angles are absolute; a joint angle is a difference of two.
+of Eq. 8 and 9 (errata 2). Angles are absolute; a joint angle is a difference of two.
 """
 
 from __future__ import annotations

@@ -3,15 +3,20 @@
 A road profile is a CSV file with a header ``distance [m],height [m]`` (units m, cm or mm). This
 example writes one (a 3 cm speed bump, 0.5 m long, then a 2 cm pothole), drives the default
 loader with the full bucket over it at 9 km/h with the pump holding the boom (the baseline), and
-prints the seat's ISO 2631-1 values and the events of the run.
+prints the seat's ISO 2631-1 values and the events of the run, and plots the seat's vertical
+acceleration.
 
-Run it from any folder: ``python docs/examples/custom_road_csv.py``; it writes ``bump.csv`` and
-``bump_run.csv`` (the time series with units) into the current folder.
+Run it from any folder: ``python docs/examples/custom_road_csv.py``; it writes ``bump.csv``,
+``bump_run.csv`` (the time series with units) and ``bump_seat.png`` into the current folder.
 """
 
 from pathlib import Path
 
+import matplotlib
 import numpy as np
+
+matplotlib.use("Agg")  # files only, no window
+import matplotlib.pyplot as plt
 
 from loader_model.iso2631 import format_evaluation
 from loader_model.plant.plant_parameters import plant_parameter_vector
@@ -55,3 +60,16 @@ result.write("bump_run.csv")
 seat_z = result["f_Py"] - result["f_Py"][0]  # the seat pad under the occupant
 assert np.all(np.isfinite(seat_z))
 assert np.max(np.abs(seat_z)) > 0.1, "the bump must shake the seat"
+
+figure, axis = plt.subplots(figsize=(7.5, 3.2))
+axis.plot(result.time_s, seat_z, lw=1.0)
+axis.set_xlabel("time t [s]")
+axis.set_ylabel("seat vertical acceleration [m/s²]")
+bump_s, pothole_s = ((x - course.start_m) / course.speed_m_s for x in (10.0, 20.0))
+axis.set_title(
+    f"Full bucket, 9 km/h: front axle on the bump at {bump_s:.0f} s, the pothole at {pothole_s:.0f} s"
+)
+axis.grid(True, alpha=0.3)
+figure.tight_layout()
+figure.savefig("bump_seat.png", dpi=100)
+print("wrote bump_seat.png")

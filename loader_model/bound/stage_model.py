@@ -26,7 +26,7 @@ each weighted seat residual of a_total² (Eq. 49, 50) and each path sample of th
 path rows. δz_0 = 0; the end condition is a constraint on δz_N. The states are in units of
 their largest one-stage response to a command (the Riccati recursion and the interior
 point's tolerances then see entries of one size; HPIPM did not converge without it). It
-replaces the condensed model of session 8 (the sensitivities of every sample to all N commands,
+replaces an earlier condensed model (the sensitivities of every sample to all N commands,
 a dense N × N Hessian and every path sample a dense row: O(N² K_s) to build and O(N³) per
 interior-point iteration); on the 6 s problem its gradient and mean curvature agreed with that
 model's to 1e-14 and its path rows to 1e-15 relative. Built in O(N M n_z³): 0.4 s for the

@@ -1,4 +1,4 @@
-r"""Ride-comfort gain design (issue 11): K_fb minimising a_total² of Eq. 50 over both bucket loads.
+r"""Ride-comfort gain design: K_fb minimising a_total² of Eq. 50 over both bucket loads.
 
 Design plant per load (:mod:`~loader_model.control.comfort_plant`): the detailed linearised plant,
 the skyhook's continuous structure with K_fb as the static gain, the ISO 2631-1 weightings on the

@@ -18,7 +18,7 @@ sets its poles, zeros and gain beside those of Eq. 43,
 
 .. math:: \frac{p_A(s)}{p_{A,ref}(s)} = \frac{2810 s - 6361}{s^3 + 222.3 s^2 + 6328 s + 78910}
 
-whose DC gain is −0.081 and whose zero is at +2.26 rad/s (DESIGN.md errata 9).
+whose DC gain is −0.081 and whose zero is at +2.26 rad/s (errata 9).
 """
 
 from __future__ import annotations

@@ -5,7 +5,7 @@ valves, friction, pump limits). Its sign against the paper (section 5.3: the dam
 *lower* a_total by up to 34 %) is already set in the linear model, so its causes can be isolated
 there, quickly and without randomness. With Table 5's flow read as a cylinder leak and the seat
 read on the rigid chassis the controllers raised a_total; on the circuit states (closed
-load-holding valves for baseline and passive, DESIGN.md errata 11) and the seat pad under a seated
+load-holding valves for baseline and passive, errata 11) and the seat pad under a seated
 occupant (errata 13) they lower it (the variants below switch each back):
 
 - the plant (:func:`loader_model.plant.linear.linearise_plant`) at the static equilibrium of the

@@ -1,4 +1,4 @@
-"""Second mode of the gain design (issue 11): refine K_fb on the nonlinear obstacle course.
+"""Second mode of the gain design: refine K_fb on the nonlinear obstacle course.
 
 The linear design (:mod:`~loader_model.control.comfort_design`) minimises a_total on a random
 road through the linearised plant. On the paper's course the tyres leave the ground and the

@@ -1,5 +1,5 @@
 """The skyhook gains the report runs beside Table 3: output-feedback LQR and the ISO 2631
-comfort optimisation (issue 11), designed on the linearised plant for the paper's conditions.
+comfort optimisation, designed on the linearised plant for the paper's conditions.
 
 Table 3 itself runs with k_φ = +0.22 (errata 12); the printed k_φ = −0.22 runs as the row
 ``skyhook-printed``, a reported unstable variant (a real pole at about +0.05 rad/s: over the

@@ -2,7 +2,7 @@
 
 Every number here is formatted from this run's tables or from the shipped fidelity budget
 (:mod:`~loader_model.experiments.fidelity`, ``data/fidelity_budget.json``); the few quoted as
-"measured before issue 21" are one-off runs on the earlier model, kept with that label.
+"measured on the earlier model" are one-off runs on the model before the circuit states, kept with that label.
 """
 
 from __future__ import annotations

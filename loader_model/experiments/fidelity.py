@@ -1,4 +1,4 @@
-"""The fidelity budget of Table 6: one modelling step at a time, each measured (issue 21).
+"""The fidelity budget of Table 6: one modelling step at a time, each measured.
 
 The steps run the whole Table 6 matrix (:mod:`~loader_model.experiments.trials`, the report's
 seeds) on a :class:`~loader_model.experiments.variant.ModelVariant` each, cumulatively:

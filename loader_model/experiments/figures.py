@@ -42,13 +42,19 @@ def single_obstacle_run(controller: str, speed_kmh: float, load: str = "empty", 
     return simulate(course_input(course, scenario), scenario)
 
 
-def plot_fig13(path: Path) -> Path:
-    """Fig. 13: seat vertical acceleration over one board at 9 km/h, empty, ± skyhook."""
+def plot_fig13(path: Path) -> dict[str, float]:
+    """Fig. 13: seat vertical acceleration over one board at 9 km/h, empty, ± skyhook.
+
+    Returns the largest absolute seat acceleration (about its static value) of each run in
+    m/s², by controller, for the caption.
+    """
     plt = _pyplot()
     figure, axis = plt.subplots(figsize=(7.5, 3.8))
+    peaks: dict[str, float] = {}
     for controller, style in (("baseline", "-"), ("skyhook", "--")):
         result = single_obstacle_run(controller, 9.0, settle_s=2.0)
         f_sy = result["f_Py"]
+        peaks[controller] = float(np.max(np.abs(f_sy - f_sy[0])))
         axis.plot(result.time_s, f_sy - f_sy[0], style, lw=1.0, label=controller)
     moving = np.flatnonzero(np.abs(f_sy - f_sy[0]) > 1e-3)
     if moving.size:
@@ -61,7 +67,7 @@ def plot_fig13(path: Path) -> Path:
     figure.tight_layout()
     figure.savefig(path, dpi=110)
     plt.close(figure)
-    return path
+    return peaks
 
 
 def plot_fig10(path: Path, table1_hz: Sequence[float]) -> Path:
@@ -97,13 +103,21 @@ def plot_fig10(path: Path, table1_hz: Sequence[float]) -> Path:
 
 
 def plot_fig14(path: Path, outcomes: Sequence[TrialOutcome]) -> Path:
-    """Fig. 14: mean a_total with 95 % intervals per speed/load condition and controller."""
+    """Fig. 14: mean a_total with 95 % intervals per speed/load condition and controller (top),
+    and the change against the baseline with its 95 % interval beside the paper's Table 6
+    (bottom). The paper publishes its absolute levels only as a bar chart; Table 6's changes
+    are its numbers."""
+    from loader_model.experiments.table6 import table6_cells
+
     plt = _pyplot()
     conditions = sorted({(o.spec.speed_kmh, o.spec.load) for o in outcomes})
-    figure, axis = plt.subplots(figsize=(8.0, 4.8))
+    figure, (axis, change_axis) = plt.subplots(
+        2, 1, figsize=(8.0, 8.2), height_ratios=(1.0, 1.0), sharex=True
+    )
     present = {o.spec.controller for o in outcomes}
     controllers = [c for c in (*CONTROLLERS, *DESIGNED_CONTROLLERS) if c in present]
     width = 0.8 / len(controllers)
+    offsets = {c: (k - (len(controllers) - 1) / 2) * width for k, c in enumerate(controllers)}
     for k, controller in enumerate(controllers):
         means, errors = [], []
         for speed, load in conditions:
@@ -118,19 +132,49 @@ def plot_fig14(path: Path, outcomes: Sequence[TrialOutcome]) -> Path:
                 mean, _, high = (sample[0],) * 3 if sample else (np.nan,) * 3
             means.append(mean)
             errors.append(high - mean)
-        positions = np.arange(len(conditions)) + (k - (len(controllers) - 1) / 2) * width
-        axis.bar(positions, means, width, yerr=errors, capsize=3, label=controller)
-    axis.set_xticks(
+        positions = np.arange(len(conditions)) + offsets[controller]
+        axis.bar(positions, means, width, yerr=errors, capsize=3, label=controller, color=f"C{k}")
+    axis.set_ylabel("a_total (Eq. 50) [m/s²]")
+    axis.set_title("Fig. 14 (model): mean a_total, error bars 95 % confidence intervals")
+    axis.grid(True, axis="y", alpha=0.3)
+    axis.legend(fontsize=8, ncol=4, loc="upper center", bbox_to_anchor=(0.5, -0.02))
+
+    index = {c: k for k, c in enumerate(conditions)}
+    paper_label = "paper, Table 6"
+    for cell in table6_cells(outcomes):
+        key = (cell.speed_kmh, cell.load)
+        if key not in index or cell.controller not in offsets:
+            continue
+        x = index[key] + offsets[cell.controller]
+        k = controllers.index(cell.controller)
+        m = cell.model
+        change_axis.bar(x, m.change_percent, width, color=f"C{k}")
+        change_axis.errorbar(
+            x,
+            m.change_percent,
+            yerr=[[m.change_percent - m.low_percent], [m.high_percent - m.change_percent]],
+            color="k",
+            capsize=3,
+            lw=0.8,
+        )
+        if np.isfinite(cell.paper_change_percent):
+            change_axis.plot(
+                x, cell.paper_change_percent, "D", color="k", ms=6, mfc="w", label=paper_label
+            )
+            paper_label = None
+    change_axis.axhline(0.0, color="k", lw=0.8)
+    change_axis.set_ylabel("change of a_total against baseline [%]")
+    change_axis.set_title("model (bars, 95 % intervals) and the paper's Table 6 (diamonds)")
+    change_axis.grid(True, axis="y", alpha=0.3)
+    if paper_label is None:
+        change_axis.legend(fontsize=8, loc="best")
+    change_axis.set_xticks(
         np.arange(len(conditions)),
         [
             f"{SPEED_LABELS.get(s, s)} speed ({s:g} km/h)\n{LOAD_LABELS.get(ld, ld)} load ({ld})"
             for s, ld in conditions
         ],
     )
-    axis.set_ylabel("a_total (Eq. 50) [m/s²]")
-    axis.set_title("Fig. 14 (model): mean a_total, error bars 95 % confidence intervals")
-    axis.grid(True, axis="y", alpha=0.3)
-    axis.legend(fontsize=8, ncol=4, loc="upper center", bbox_to_anchor=(0.5, -0.2))
     figure.tight_layout()
     figure.savefig(path, dpi=110)
     plt.close(figure)

@@ -30,7 +30,7 @@ __all__ = [
     "write_tables",
 ]
 
-#: Table 6 fidelity criterion of issue 13: |model − paper| within this many percentage points.
+#: Table 6 fidelity criterion: |model − paper| within this many percentage points.
 FIDELITY_POINTS = 10.0
 
 
@@ -107,12 +107,18 @@ def designed_rows(cells: list[Table6Cell]) -> Rows:
 
 
 def markdown_table(rows: Rows) -> str:
-    """``rows`` (header first) as a GitHub Markdown table."""
-    lines = ["| " + " | ".join(rows[0]) + " |", "|" + "---|" * len(rows[0])]
-    lines += [
-        "| " + " | ".join(cell.replace("|", "\\|") for cell in row) + " |" for row in rows[1:]
-    ]
-    return "\n".join(lines)
+    """``rows`` (header first) as a GitHub / CommonMark table: pipes in any cell are escaped,
+    line breaks become spaces, and every row has the header's number of cells."""
+    width = len(rows[0])
+    for number, row in enumerate(rows[1:], start=1):
+        if len(row) != width:
+            raise ValueError(f"row {number} has {len(row)} cells, the header {width}: {row!r}")
+
+    def line(row: Sequence[str]) -> str:
+        cells = (str(c).replace("|", "\\|").replace("\n", " ") for c in row)
+        return "| " + " | ".join(cells) + " |"
+
+    return "\n".join([line(rows[0]), "|" + "---|" * width, *(line(row) for row in rows[1:])])
 
 
 def write_tables(folder: Path, tables: dict[str, Rows]) -> None:

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -104,7 +105,7 @@ def run_trials(
     specs: Sequence[TrialSpec],
     jobs: int = 2,
     progress: bool = True,
-    meanwhile: Callable[[], None] | None = None,
+    meanwhile: Callable[[], None] | Sequence[tuple[str, Callable[[], None]]] | None = None,
     keep_failures: bool = False,
 ) -> list[TrialOutcome]:
     """Run ``specs`` on ``jobs`` processes (1: in this process), in the order given.
@@ -114,7 +115,9 @@ def run_trials(
     BLAS thread per process (:func:`_one_blas_thread`). The workers end with this process
     (:func:`~loader_model.io.processes.worker_pool`): an interrupt or an error stops them at once.
     ``meanwhile`` runs in this process while the workers simulate (or after the trials, with
-    ``jobs`` = 1), so that the calling process does useful work instead of waiting. With
+    ``jobs`` = 1), so that the calling process does useful work instead of waiting; given as
+    (label, step) pairs, each step counts as one task of the progress bar beside the trials, which
+    count as their batches finish, so the bar moves while both run. With
     ``keep_failures`` a trial the simulator stops comes back with a NaN a_total (the reason in
     its ``weighted_rms["failed"]``) instead of stopping the run.
     """
@@ -128,12 +131,40 @@ def run_trials(
     batches = [[specs[i] for i in indices] for indices in groups.values()]
     outcomes: dict[TrialSpec, TrialOutcome] = {}
     chunk = _run_chunk_keeping_failures if keep_failures else _run_chunk
-    bar = tqdm(total=len(specs), desc="Table 6 trials", unit="trial", disable=not progress)
+    if meanwhile is None:
+        steps: list[tuple[str, Callable[[], None]]] = []
+    elif callable(meanwhile):
+        steps = [("", meanwhile)]
+    else:
+        steps = list(meanwhile)
+    bar = tqdm(
+        total=len(specs) + len(steps),
+        desc=f"{len(specs)} trials" + (f" + {len(steps)} report steps" if steps else ""),
+        unit="task",
+        disable=not progress,
+    )
 
-    def collect(results: list[TrialOutcome]) -> None:
+    def collect(results: list[TrialOutcome], count: bool = True) -> None:
         for outcome in results:
             outcomes[outcome.spec] = outcome
-        bar.update(len(results))
+        if count:
+            bar.update(len(results))
+
+    def run_steps() -> None:
+        for label, step in steps:
+            bar.set_postfix_str(label, refresh=True)
+            step()
+            bar.update(1)
+        if steps:
+            bar.set_postfix_str("trials")
+
+    def counted(size: int) -> Callable[[Any], None]:
+        # runs in the pool's thread as a batch finishes, so the bar moves during a long step
+        def done(future: Any) -> None:
+            if not future.cancelled() and future.exception() is None:
+                bar.update(size)
+
+        return done
 
     try:
         if jobs == 1:
@@ -142,15 +173,15 @@ def run_trials(
             with threadpool_limits(1):
                 for batch in batches:
                     collect(chunk(batch))
-            if meanwhile is not None:
-                meanwhile()
+            run_steps()
         else:
             with worker_pool(jobs, initializer=_one_blas_thread) as pool:
                 futures = [pool.submit(chunk, batch) for batch in batches]
-                if meanwhile is not None:
-                    meanwhile()
+                for future, batch in zip(futures, batches, strict=True):
+                    future.add_done_callback(counted(len(batch)))
+                run_steps()
                 for future in pool.completed(futures):
-                    collect(future.result())
+                    collect(future.result(), count=False)
     finally:
         bar.close()
     return [outcomes[spec] for spec in specs]

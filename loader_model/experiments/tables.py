@@ -47,41 +47,74 @@ def table1_rows() -> Rows:
     return rows
 
 
-def _complex(values: np.ndarray) -> str:
+def _complex(values) -> str:
+    """Poles or zeros as text; a complex value with positive imaginary part as σ ± ωj."""
     return ", ".join(
-        f"{v.real:.1f}" + (f"{v.imag:+.1f}j" if abs(v.imag) > 1e-9 else "") for v in values
+        f"{v.real:.1f}" + (f" ± {abs(v.imag):.1f}j" if abs(v.imag) > 1e-9 else "") for v in values
     )
 
 
-def pressure_loop_rows(figure: Path | None = None) -> Rows:
-    """The detailed pressure loop (empty bucket) beside Eq. 43; optionally its Bode figure."""
+def pressure_loop_rows(figure: Path | None = None) -> tuple[Rows, Rows]:
+    """The detailed pressure loop (empty bucket) beside Eq. 43; optionally its Bode figure.
+
+    Returns a summary (per loop: DC gain, zeros, the three slowest poles, how many poles lie
+    within 500 rad/s) and the poles themselves, one row per pole or complex pair (s = σ ± jω
+    written once, with |s| and the damping ratio −σ/|s|), slowest first.
+    """
     from loader_model.control.hydraulics_report import hydraulics_report, plot_pressure_loop
     from loader_model.parameters.sets import bucket_load, default_loader
 
     report = hydraulics_report(default_loader(), bucket_load("empty"))
-    rows: Rows = [["loop", "DC gain", "poles |s| < 500 [rad/s]", "zeros |s| < 500 [rad/s]"]]
-    first = next(iter(report.comparisons.values()))
-    rows.append(
+    summary: Rows = [
         [
-            "Eq. 43 (paper)",
-            f"{first.reference_dc_gain:.4f}",
-            _complex(first.reference_poles[np.abs(first.reference_poles) < 500]),
-            _complex(first.reference_zeros),
+            "loop",
+            "DC gain",
+            "slowest zeros, abs(s) < 500 [rad/s]",
+            "three slowest poles [rad/s]",
+            "poles with abs(s) < 500",
         ]
-    )
+    ]
+    poles: Rows = [["loop", "pole [rad/s]", "abs(s) [rad/s]", "damping ratio"]]
+    first = next(iter(report.comparisons.values()))
+    loops = [
+        ("Eq. 43 (paper)", first.reference_dc_gain, first.reference_zeros, first.reference_poles)
+    ]
     for name, comparison in report.comparisons.items():
-        zeros = comparison.zeros[np.abs(comparison.zeros) < 500]
-        rows.append(
+        loops.append(
+            (f"model, {name}", comparison.dc_gain, comparison.zeros, comparison.dominant_poles)
+        )
+    for name, dc_gain, zeros, loop_poles in loops:
+        near = _one_per_pair(loop_poles[np.abs(loop_poles) < 500])
+        summary.append(
             [
-                f"model, {name}",
-                f"{comparison.dc_gain:.4f}",
-                _complex(comparison.dominant_poles),
-                _complex(zeros),
+                name,
+                f"{dc_gain:.4f}",
+                _first_three(_one_per_pair(zeros[np.abs(zeros) < 500])),
+                _complex(near[:3]),
+                str(int(np.sum(np.abs(loop_poles) < 500))),
             ]
         )
+        for pole in near:
+            poles.append(
+                [name, _complex([pole]), f"{abs(pole):.1f}", f"{-pole.real / abs(pole):.3f}"]
+            )
     if figure is not None:
         plot_pressure_loop(report, figure, "Pressure loop p_A,ref -> p_A: model and Eq. 43")
-    return rows
+    return summary, poles
+
+
+def _first_three(values: np.ndarray) -> str:
+    if values.size == 0:
+        return "none"
+    more = f" (and {values.size - 3} more)" if values.size > 3 else ""
+    return _complex(values[:3]) + more
+
+
+def _one_per_pair(values: np.ndarray) -> np.ndarray:
+    """Real values and one of each complex-conjugate pair (imaginary part > 0), by |s|."""
+    values = np.asarray(values, dtype=complex)
+    kept = values[values.imag >= -1e-9 * np.maximum(1.0, np.abs(values))]
+    return kept[np.argsort(np.abs(kept), kind="stable")]
 
 
 def identification_rows(seed: int = 0) -> tuple[Rows, Rows]:

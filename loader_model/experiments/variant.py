@@ -1,12 +1,12 @@
 """Which model a Table 6 trial runs on: the steps of the fidelity budget and the calibration.
 
-The report's Table 6 runs the model as built (:data:`AS_BUILT`). The fidelity budget (issue 21,
+The report's Table 6 runs the model as built (:data:`AS_BUILT`). The fidelity budget (
 :mod:`~loader_model.experiments.fidelity`) adds one step at a time from the model as it was before
 (:data:`AS_IT_WAS`), and the calibration (:mod:`~loader_model.experiments.calibration_table6`) varies
 the estimated parameters; each is a :class:`ModelVariant`, a frozen value every trial carries, so a
 worker process builds the plant and scenario of a variant once and the seeds stay the trials'.
 
-What a variant switches (DESIGN.md errata 11-13):
+What a variant switches (errata 11-13):
 
 - ``holding_valves``: baseline and passive on closed load-holding valves, the virtual accumulator
   and skyhook with them open (:meth:`~loader_model.plant.plant_parameters.PlantOptions.
@@ -103,8 +103,8 @@ class ModelVariant:
 #: The model as built: circuit states, seat pad and occupant, tandem-cam tyres, Table 3 with
 #: k_φ = +0.22, the shipped parameter files.
 AS_BUILT = ModelVariant()
-#: The model before issue 21: Table 5's flow as a cylinder leak for every controller, the seat on
-#: the rigid chassis, rigid-wheel tyres, Table 3 as printed.
+#: The model before the fidelity budget's steps: Table 5's flow as a cylinder leak for every
+#: controller, the seat on the rigid chassis, rigid-wheel tyres, Table 3 as printed.
 AS_IT_WAS = ModelVariant(
     label="as it was",
     holding_valves=False,

@@ -18,7 +18,7 @@ as ``controller.<name>``, except four facts of the plant that the graph takes fr
 own parameters (V_p_max, g, N_x) and from its static equilibrium (u_hold), so that changing a
 plant parameter in the importing tool keeps the controller consistent.
 
-Any described machine (issue 23): the controllers read their sensors by name
+Any described machine: the controllers read their sensors by name
 (:data:`~loader_model.control.sensors.SENSOR_NAMES`: f_Hx, f_Hy, f_Ny, φ, p_A), which every
 machine's plant layout has among its outputs, and the settings' plant facts by parameter name;
 the graph takes the machine's outputs, states and FMU parameters from

@@ -14,7 +14,7 @@ Real in one array indexed by its value reference:
 
 The one Boolean (value reference 0) is ``start_at_equilibrium``.
 
-Another described machine (issue 23) has the same blocks with the names of its plant layout
+Another described machine has the same blocks with the names of its plant layout
 (:func:`~loader_model.plant.layout.plant_layout`); its completed parameters are its
 ``static_names`` (tyre loads and locked-cylinder preloads). Units and descriptions of names the
 skid-steer lacks follow from their form (``theta_3``: rad, ``f_Bx``: a specific force, ...).

@@ -9,7 +9,7 @@ in) gives A_p (p_A − α p_B) − F_f − F_L = m_eq ẍ, hence
 **Erratum:** Eq. 44 as printed, F_f = m_eq ẍ + F_L − A_p (p_A − α p_B), has the opposite sign
 of Eq. 31; with it the identified friction would oppose Table 4's positive f_v.
 
-Friction model (Eq. 46 as read in DESIGN.md errata 10): the pressure-dependent Coulomb part
+Friction model (Eq. 46 as read in errata 10): the pressure-dependent Coulomb part
 takes the sign of the velocity with the same tanh as the Stribeck part,
 
 .. math::

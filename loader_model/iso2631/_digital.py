@@ -49,7 +49,7 @@ __all__ = [
 BLOCK_SAMPLES = 64
 #: Samples filtered per pass of :func:`sos_filter` and :func:`fir_filter` (a whole number of
 #: blocks): their temporaries stay at a few times 8 MB whatever the record's length, so a
-#: long record costs its input and output arrays only (issue 9: a 10-million-row CSV).
+#: long record costs its input and output arrays only (a 10-million-row CSV, for example).
 SEGMENT_SAMPLES = BLOCK_SAMPLES * 16384
 
 

@@ -3,7 +3,7 @@
 The paper's geometry and masses came from the manufacturer and are not published; tyre and boom
 properties are the least known. :func:`calibrate` fits the free parameters of any model, given as a
 callable returning (M, K), to a modal table (Eq. 27-29, Table 1) by bounded nonlinear least squares.
-Table 1's columns are compared as momentum shapes M φ by default (DESIGN.md erratum 7).
+Table 1's columns are compared as momentum shapes M φ by default (errata 7).
 """
 
 from __future__ import annotations

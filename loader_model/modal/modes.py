@@ -1,8 +1,8 @@
 """Undamped modal analysis of the linearised loader (Eq. 27-29) and its comparison with Table 1.
 
 Free vibration M p̈ + K p = 0 (Eq. 27) gives K φ = ω² M φ with p = (x_H, y_H, θ1, θ2) in m and rad.
-Table 1 lists per mode a column scaled so that its largest-magnitude entry is +1. Per DESIGN.md
-erratum 7 those columns are left eigenvectors M φ (eigenvectors of K M⁻¹, what Matlab's
+Table 1 lists per mode a column scaled so that its largest-magnitude entry is +1. Per errata 7
+(guide page "Errata") those columns are left eigenvectors M φ (eigenvectors of K M⁻¹, what Matlab's
 ``eig(-K/M)`` returns), not displacement shapes φ; this module reports and compares both readings.
 """
 
@@ -133,7 +133,7 @@ class ModalTable:
 
 #: Paper Table 1 (section 2.2): empty-bucket loader (bucket load 340 kg per the project brief),
 #: rows (x_H, y_H, θ1, θ2) in m and rad, columns ω1..ω4 in descending frequency. Transcribed from
-#: reference/000_a84aeb4c1d6a3ae9.txt; per DESIGN.md erratum 7 the columns are momentum shapes M φ.
+#: reference/000_a84aeb4c1d6a3ae9.txt; per errata 7 the columns are momentum shapes M φ.
 TABLE_1 = ModalTable(
     frequencies_hz=np.array([13.4, 5.6, 4.8, 2.9]),
     shapes=np.array(

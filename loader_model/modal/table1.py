@@ -4,7 +4,7 @@ The paper does not publish geometry or masses. The default loader's geometry and
 values Table 1 implies (rounded; see the sources in ``data/default_loader.toml``); the calibration
 fits the six least-known parameters below within physically plausible bounds, on the generated model
 (:func:`loader_model.modal.undamped.undamped_matrices`), reading Table 1's columns as momentum shapes M·φ
-(DESIGN.md errata 7). ``loader-model calibrate`` runs it and writes the result as a TOML file.
+(errata 7). ``loader-model calibrate`` runs it and writes the result as a TOML file.
 """
 
 from __future__ import annotations

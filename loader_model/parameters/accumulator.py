@@ -1,4 +1,4 @@
-"""Parameter set of the passive ride control's gas accumulators (DESIGN.md, Hydraulics).
+"""Parameter set of the passive ride control's gas accumulators (guide page "Hydraulics").
 
 Units follow the SI rule of :mod:`loader_model.parameters.schema`. Re-exported by
 :mod:`loader_model.parameters.hydraulics` with the drive's other parameter sets.

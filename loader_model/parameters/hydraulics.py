@@ -151,7 +151,7 @@ class LeakageParameters(TypedLeaves):
 
     Q_L = k_Lp (p_A − p_B) − k_Lv ẋ_act (Eq. 47, Table 5) is the pump-side flow of the
     regression of Eq. 48 while the pump holds the boom through open load-holding valves
-    (DESIGN.md errata 11; :mod:`loader_model.plant.circuit`); behind closed valves only the
+    (errata 11; :mod:`loader_model.plant.circuit`); behind closed valves only the
     piston seal's cross-port leakage Q_seal = n k_seal (p_A − p_B) acts.
 
     Attributes
@@ -248,7 +248,7 @@ class PumpParameters(TypedLeaves):
         ζ_p (Table 2).
     displacement_rate_limit : float
         |dV_p/dt| limit in m³/(rev·s). Table 2 prints "±1.24 m³/s", which cannot be literal;
-        read as 1.24e-3 m³/(rev·s), a full stroke in about 37 ms (DESIGN.md errata 8).
+        read as 1.24e-3 m³/(rev·s), a full stroke in about 37 ms (errata 8).
     """
 
     max_displacement: float = field(

@@ -1,4 +1,4 @@
-"""Parameter files of described machines other than the skid-steer (issue 23): flat, by model name.
+"""Parameter files of described machines other than the skid-steer: flat, by model name.
 
 The skid-steer keeps its grouped files (:mod:`loader_model.parameters.sets`). Every other machine
 of :mod:`loader_model.machines` has one flat TOML file, ``loader_model/data/machines/<name>.toml``

@@ -13,7 +13,7 @@ Frame convention
 Points are ``(x, y)`` in metres in the chassis frame: origin at the chassis centre of gravity H,
 x forward (towards the bucket), y up, with the boom at its operating angle φ0 (the configuration
 p = 0 of Eq. 26). Points on the boom (E, centres of gravity) are given in the same frame at φ0,
-with signs, not as the paper's abs()-based distances of Eq. 8, 9 (DESIGN.md errata 2)::
+with signs, not as the paper's abs()-based distances of Eq. 8, 9 (errata 2)::
 
             D o------- boom --------.
              /|  E                    `-.  G (boom + load)

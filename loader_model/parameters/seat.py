@@ -1,4 +1,4 @@
-"""The seated occupant on the seat cushion at S (TOML section ``[seat]``; DESIGN.md errata 13).
+"""The seated occupant on the seat cushion at S (TOML section ``[seat]``; errata 13).
 
 Section 5.3 of the paper measured with an accelerometer pad between operator and seat, not on
 the rigid chassis. :mod:`loader_model.plant.occupant` puts a seated occupant on a cushion at S

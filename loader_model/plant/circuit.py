@@ -5,7 +5,7 @@ cylinders' two sides; load-holding valves on the piston side keep the boom up wh
 idle (Heybroek, *Saving Energy in Construction Machinery using Displacement Control Hydraulics*,
 Linköping Studies in Science and Technology, Thesis No. 1372, 2008; the Purdue DC prototypes,
 e.g. Hippalgaonkar & Ivantysynova, SICFP 2013). Commercial ride control connects its
-accumulator between those valves and the cylinder (DESIGN.md, Hydraulics), so it acts while the
+accumulator between those valves and the cylinder (guide page "Hydraulics"), so it acts while the
 valves are closed. The plant's switch ``holding_open`` h (1 open, 0 closed) sets which state the
 circuit is in; per side of the piston (totals over the n cylinders):
 
@@ -33,7 +33,7 @@ Which valve acts where:
   the valves are closed: while open it is part of what Table 5's regression measured (and five
   orders of magnitude smaller than it), so it is not counted twice.
 
-Why Table 5's k_Lp is not a cylinder leak (DESIGN.md errata 11): at the empty bucket's
+Why Table 5's k_Lp is not a cylinder leak (errata 11): at the empty bucket's
 p_A − p_B = 69 bar, k_Lp = 2.87e-11 m³/(s·Pa) is 11.9 l/min, so a boom on a leaking cylinder
 would sink about 3 cm/s. Q_A in Eq. 48 was estimated from the pump's displacement, so the slope
 lumps the pump's volumetric losses (about 11 % of its 110 l/min here; estimate) with regression

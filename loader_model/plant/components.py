@@ -140,7 +140,7 @@ def seal_friction(
     p_a_gauge: Expr,
     velocity_m_s: Expr,
 ) -> Expr:
-    r"""Seal friction of the cylinders (Eq. 46 in the reading of DESIGN.md errata 10).
+    r"""Seal friction of the cylinders (Eq. 46 in the reading of errata 10).
 
     .. math::
 

@@ -1,4 +1,4 @@
-"""Names and sizes of the plant of one described machine (issue 23).
+"""Names and sizes of the plant of one described machine.
 
 The plant of :mod:`loader_model.plant.plant` is the same for every machine of
 :mod:`loader_model.machines`: its generated multibody model, the lift cylinder group driven by

@@ -1,4 +1,4 @@
-"""The plant parameter vector of a described machine other than the skid-steer (issue 23).
+"""The plant parameter vector of a described machine other than the skid-steer.
 
 A machine's flat parameter file (:mod:`loader_model.parameters.machine_files`) gives its
 multibody model, its lift cylinder group and the oil's bulk modulus and charge pressure. The rest

@@ -1,4 +1,4 @@
-r"""Seated occupant on the seat cushion at S, driven by the chassis (DESIGN.md errata 13).
+r"""Seated occupant on the seat cushion at S, driven by the chassis (errata 13).
 
 Section 5.3 of the paper measured the seat with an accelerometer pad between operator and seat;
 the chassis point S of the multibody model is the seat's base. Per axis of the chassis frame

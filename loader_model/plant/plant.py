@@ -29,7 +29,7 @@ with Q_p = n V_p (V_p saturated at ±V_p,max), the rod side tied to the charge l
 low-side valve Q_charge = G_charge (p_c − p_B) (the rod side is the low side while the boom
 carries its weight), an anti-cavitation check valve from the charge line into the piston side
 (through the load-holding valve's check), a port relief valve on the piston side, Table 5's
-pump-side regression flow Q_L (Eq. 47 with Eq. 48's sign; DESIGN.md errata 11), the piston
+pump-side regression flow Q_L (Eq. 47 with Eq. 48's sign; errata 11), the piston
 seals' leakage Q_seal = n k_seal (p_A − p_B) behind closed valves, seal friction F_f (Eq. 46,
 errata 10 reading), end stops, and the accumulator through its orifice (between the valves and
 the cylinder). The pump's

@@ -57,7 +57,7 @@ HYDRAULIC_PARAMETERS: tuple[tuple[str, str, str], ...] = (
     ("n_pump", "rev/s", "pump shaft speed"),
     ("omega_p", "rad/s", "natural frequency of the displacement loop (Fig. 9, Table 2)"),
     ("zeta_p", "-", "damping ratio of the displacement loop (Table 2)"),
-    ("Vd_p_max", "m^3/(rev*s)", "displacement rate limit (Table 2, DESIGN.md errata 8)"),
+    ("Vd_p_max", "m^3/(rev*s)", "displacement rate limit (Table 2, errata 8)"),
     ("n_acc", "-", "number of accumulators on the piston side"),
     ("p_0", "Pa", "accumulator precharge, gauge"),
     ("V_0", "m^3", "accumulator gas volume at precharge, per accumulator"),
@@ -80,7 +80,7 @@ PLANT_PARAMETER_UNITS: dict[str, str] = dict(generated.PARAMETER_UNITS) | {
     name: unit for name, unit, _ in HYDRAULIC_PARAMETERS + OCCUPANT_PARAMETERS
 }
 #: Controllers that leave the pump idle: the boom sits on closed load-holding valves
-#: (DESIGN.md, Controllers; errata 11). Every other controller drives the pump through them.
+#: (guide page "Controllers"; errata 11). Every other controller drives the pump through them.
 IDLE_PUMP_CONTROLLERS: tuple[str, ...] = ("baseline", "passive")
 
 
@@ -123,7 +123,7 @@ class PlantOptions:
 
     @classmethod
     def for_controller(cls, controller: str, *, occupant: bool = True) -> PlantOptions:
-        """The circuit a ride controller runs on (DESIGN.md, Controllers; errata 11).
+        """The circuit a ride controller runs on (guide page "Controllers"; errata 11).
 
         ``baseline`` and ``passive`` (:data:`IDLE_PUMP_CONTROLLERS`) leave the pump idle: the
         boom sits on closed load-holding valves, ``passive`` with the accumulator connected

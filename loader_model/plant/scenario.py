@@ -1,7 +1,7 @@
 """One plant resolved once: loader, bucket load, circuit switches, parameter vector, equilibrium.
 
 Following one Table 6 trial used to compute the static equilibrium of the same plant up to four
-times (road input, controller settings, controller fixed point, simulator start; issue 20).
+times (road input, controller settings, controller fixed point, simulator start).
 :func:`resolve_plant` does each step once:
 :func:`~loader_model.vehicle.statics.resolve_machine` (each parameter set valid, and the two
 standing together: :func:`~loader_model.vehicle.statics.check_combination`),

@@ -1,4 +1,4 @@
-"""Roads and courses: what the ground under each axle does during a drive (issue 12, road part).
+"""Roads and courses: what the ground under each axle does during a drive.
 
 - :mod:`~loader_model.simulation.roads`: piecewise-linear ground profiles h(s), boards.
 - :mod:`~loader_model.simulation.envelope`: exact rigid-wheel enveloping filter (effective height

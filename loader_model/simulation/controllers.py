@@ -1,6 +1,6 @@
 """Discrete controllers as the simulator sees them, and the baseline that holds the boom.
 
-The interface (issue 12): a controller is a CasADi Function
+The interface: a controller is a CasADi Function
 
 .. math:: (z_{k+1}, u_k) = \\mathrm{controller}(z_k, y_k, \\theta_c)
 

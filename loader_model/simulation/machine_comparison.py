@@ -1,4 +1,4 @@
-"""The four ride controllers of one machine over one course: a_total and its change (issue 23).
+"""The four ride controllers of one machine over one course: a_total and its change.
 
 For any machine of :mod:`loader_model.machines` (the skid-steer's Table 6 comparison has its own
 trials in the experiments): the baseline, the passive accumulator, the virtual accumulator and

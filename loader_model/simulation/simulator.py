@@ -59,7 +59,7 @@ __all__ = [
 #: Periods per ``mapaccum`` call (0.5 s): the finiteness check runs after each chunk; measured
 #: fastest among 250-2000 on the development machine.
 DEFAULT_CHUNK_PERIODS = 500
-#: ROS2 steps per 1 ms period. On closed load-holding valves (baseline, passive: issue 21) the
+#: ROS2 steps per 1 ms period. On closed load-holding valves (baseline, passive: errata 11) the
 #: sealed piston side swings between the make-up check (20 bar) and the relief (230 bar) over the
 #: boards, and one step per period parts from the CVODES reference at rtol 1e-10 (measured, empty
 #: bucket, 9 km/h paper course, seat pad a_total: tandem-cam tyres −2.2 % with 1 substep, −1.6 %

@@ -11,7 +11,7 @@ Hundsdorfer, SIAM J. Sci. Comput. 20, 1999), with γ = 1 + 1/√2 and W = I − 
 second order for any W (so freezing J at the step's start and ignoring ∂f/∂t keeps the order),
 linearly implicit: no Newton iteration, one Jacobian and one factorisation per (sub)step. It is
 stable on this plant's stiff hydraulic and tyre modes (eigenvalues to about −4e3 rad/s at rest),
-where explicit RK at 1 ms is not (DESIGN.md). J is the AD Jacobian of the plant; W is factored by
+where explicit RK at 1 ms is not. J is the AD Jacobian of the plant; W is factored by
 an LU without pivoting written out in SX over its structural non-zeros (W = I − γ h J is close
 to the identity in the mechanical rows; a symbolic QR divides by columns that are numerically zero
 at rest and gave NaN). The road input enters as the table samples at the period's ends and is

@@ -1,4 +1,4 @@
-r"""Where the model holds: its range of validity, checked during a run (issue 19, item 4).
+r"""Where the model holds: its range of validity, checked during a run.
 
 The plant is a planar rigid-body model on tyres that touch the ground only at the axles A and B,
 with a lift cylinder between stiff end stops. Outside the bounds below it describes no loader,

@@ -131,8 +131,8 @@ def hydraulic_stiffness_n_per_m(
         k_{eq} = n_{cyl} K_{oil} A_p^2 \left(\frac{1}{V_A} + \frac{\alpha^2}{V_B}\right)
 
     Eq. 28 of the paper keeps only the piston side; a single-rod cylinder also compresses the
-    rod side through the annulus α A_p (Eq. 30, 37), which adds the α² / V_B term (DESIGN.md
-    errata 6). Both chambers are taken as closed (pump and charge line blocked), and the
+    rod side through the annulus α A_p (Eq. 30, 37), which adds the α² / V_B term
+    (errata 6). Both chambers are taken as closed (pump and charge line blocked), and the
     ``n_cyl`` cylinders act in parallel.
 
     Parameters

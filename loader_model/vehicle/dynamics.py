@@ -1,7 +1,7 @@
 """The generated model of a machine bound to one set of parameter values (section 2.1, Eq. 25-40).
 
 :class:`LoaderDynamics` validates its arguments, computes the static equilibrium (tyre loads,
-cylinder force and locked-cylinder preloads that make p = 0 an equilibrium, DESIGN.md "Gravity")
+cylinder force and locked-cylinder preloads that make p = 0 an equilibrium; guide page "Model")
 and evaluates the CasADi functions of the machine's generated package
 (:func:`loader_model.machines.machine`; default: the skid-steer, ``loader_model_generated``).
 Sizes and names come from the generated metadata. It never imports SymPy.
@@ -129,7 +129,7 @@ class LoaderDynamics:
             check(given)
         vector = np.array([values[n] for n in all_names])
         # The generated complete_parameters holds the static equilibrium inside the graph, so a
-        # CasADi graph of varied parameters stays at rest the same way (issue 7).
+        # CasADi graph of varied parameters stays at rest the same way.
         completed, force = self._function("complete_parameters")(vector)
         self.static_cylinder_force_N = float(force)
         """Cylinder force F_act0 that holds the boom at p = 0 [N]."""

@@ -178,3 +178,16 @@ def test_best_reductions_pick_the_largest_reduction_per_condition():
         "measured": ("virtual-accumulator", -16.1),
     }
     assert set(best) == {"9 km/h empty", "18 km/h full"}
+
+
+def test_progress_counts_the_trials_and_the_report_steps(capsys) -> None:
+    specs = trial_specs(
+        0, 1, speeds_kmh=(9.0,), loads=("empty",), controllers=("baseline",), duration_s=3.0
+    )
+    ran: list[str] = []
+    steps = [("Fig. 13", lambda: ran.append("fig13")), ("Table 4", lambda: ran.append("t4"))]
+    run_trials(specs, jobs=1, progress=True, meanwhile=steps)
+    bar = capsys.readouterr().err
+    assert ran == ["fig13", "t4"]
+    assert "1 trials + 2 report steps" in bar
+    assert "3/3" in bar and "0/3" in bar

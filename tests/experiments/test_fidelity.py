@@ -2,13 +2,16 @@
 
 from __future__ import annotations
 
-import math
 from types import SimpleNamespace
 
 import pytest
 
 from loader_model.experiments.fidelity import budget_steps, step_summary
-from loader_model.experiments.fidelity_report import budget_section, comfort_rows
+from loader_model.experiments.fidelity_report import (
+    budget_section,
+    comfort_rows,
+    comfort_summary,
+)
 from loader_model.experiments.table6 import LOAD_LABELS, PAPER_TABLE_6, SPEED_LABELS
 from loader_model.experiments.variant import AS_BUILT, AS_IT_WAS, ModelVariant
 
@@ -88,24 +91,26 @@ def test_the_budget_renders_with_its_command_and_every_step() -> None:
     assert budget_section(None)[1] == {}
 
 
-def test_comfort_rows_name_the_iso_reaction() -> None:
-    def outcome(controller: str, a: float):
+def test_comfort_rows_give_the_level_and_the_exposure_time() -> None:
+    def outcome(controller: str, a: float, a_wx: float, a_wz: float):
         return SimpleNamespace(
-            spec=SimpleNamespace(speed_kmh=9.0, load="empty", controller=controller), a_total_m_s2=a
+            spec=SimpleNamespace(speed_kmh=9.0, load="empty", controller=controller),
+            a_total_m_s2=a,
+            weighted_rms={"x": a_wx, "z": a_wz, "pitch": 0.1},
         )
 
-    rows = comfort_rows(
-        [outcome("baseline", 3.0), outcome("baseline", 3.4), outcome("skyhook", 1.0)],
-        ("baseline", "skyhook", "passive"),
-    )
-    assert rows[1] == [
-        "9 km/h",
-        "empty",
-        "3.20 (extremely uncomfortable)",
-        "1.00 (uncomfortable)",
-        "-",
+    outcomes = [
+        outcome("baseline", 3.0, 0.5, 2.0),
+        outcome("baseline", 3.4, 0.5, 2.0),
+        outcome("skyhook", 1.0, 0.5, 0.5),
     ]
-    assert not math.isnan(float(rows[1][2].split()[0]))
+    rows = comfort_rows(outcomes, ("baseline", "skyhook", "passive"))
+    # baseline: a_wz 2.0 dominates 1.4 x 0.5 -> 480 min (0.5 / 2)^2 = 30 min;
+    # skyhook: 1.4 a_wx = 0.7 dominates -> 480 (0.5 / 0.7)^2 = 244.9 min
+    assert rows[1] == ["9 km/h", "empty", "3.20 (30.0 min)", "1.00 (244.9 min)", "-"]
+    summary = comfort_summary(outcomes)
+    assert "from 1.00 to 3.20 m/s²" in summary
+    assert "1 of 2 'extremely uncomfortable'; 1 of 2 'uncomfortable'" in summary
 
 
 def test_a_variant_checks_its_envelope_and_gains() -> None:

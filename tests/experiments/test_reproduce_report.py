@@ -9,6 +9,7 @@ import pytest
 
 from loader_model.cli import main
 from loader_model.experiments.reproduction import FIGURES
+from tests.experiments.test_report_markdown import assert_every_table_renders
 
 pytestmark = pytest.mark.slow
 
@@ -43,3 +44,9 @@ def test_reproduce_writes_a_complete_report(tmp_path: Path, capsys) -> None:
     assert "The bound: what the pump could do" in text
     assert "best simulated Δ [%] (model)" in text and "the linear plant's bound is not" in text
     assert "within 10 percentage points" in capsys.readouterr().out
+    # a CommonMark (GitHub) renderer shows every table as a table; the summary comes first
+    assert_every_table_renders(text)
+    sections = re.findall(r"^## (.+)$", text, flags=re.M)
+    assert sections[0] == "Summary" and sections[1].startswith("Table 6")
+    assert re.search(r"\*\*\d+ of 12 cells of Table 6 lie within 10 percentage points", text)
+    assert (target / "eq43_poles.csv").is_file()

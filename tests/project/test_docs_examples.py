@@ -1,7 +1,9 @@
-"""The worked examples of docs/examples/ run as shown, each in a temporary folder (issue 24)."""
+"""The worked examples of docs/examples/ run as shown, each in a temporary folder, and each page
+shows its script's code as it is (readable on GitHub; the docs build appends the output)."""
 
 from __future__ import annotations
 
+import re
 import runpy
 from pathlib import Path
 
@@ -33,6 +35,12 @@ def test_example_runs(script, tmp_path, monkeypatch, capsys):
 def test_example_has_its_page(script):
     page = EXAMPLES_DIR / f"{script.stem}.md"
     assert page.is_file(), f"{script.name}: no docs page {page.name} that includes it"
-    assert f"{script.name}" in page.read_text(encoding="utf-8")
+    text = page.read_text(encoding="utf-8")
+    assert f"{script.name}" in text
+    assert "{literalinclude}" not in text, "GitHub shows a directive, not the code"
+    blocks = re.findall(r"^```python\n(.*?)^```$", text, flags=re.M | re.S)
+    assert blocks == [script.read_text(encoding="utf-8")], (
+        f"{page.name} must show {script.name} as it is, in one python block"
+    )
     index = (EXAMPLES_DIR / "index.md").read_text(encoding="utf-8")
     assert f"\n{script.stem}\n" in index, f"{script.stem} is missing from examples/index.md"

@@ -1,4 +1,4 @@
-"""The README's python code blocks run in order, and its links point at files (issue 24)."""
+"""The README's python code blocks run in order, and its links point at files."""
 
 from __future__ import annotations
 
