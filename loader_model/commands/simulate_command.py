@@ -212,6 +212,7 @@ def run(args: argparse.Namespace) -> int:
         f"{result.metadata['wall_time_s']:.3f} s (real-time factor "
         f"{result.metadata['real_time_factor']:.0f}, {result.metadata['backend']})"
     )
+    _print_limits(result, scenario.plant)
     _print_events(result.events)
     if args.output is not None:
         print(f"wrote {result.write(args.output)}")
@@ -246,6 +247,25 @@ def _print_events(events: tuple[Event, ...]) -> None:
         print(f"  {event.describe()}")
     if len(events) > _SHOWN_EVENTS:
         print(f"  ... {len(events) - _SHOWN_EVENTS} more (all in the result's events)")
+
+
+def _print_limits(result, plant) -> None:
+    """Print the share of the run the pump spends at its limits, and how the run ends."""
+    from loader_model.simulation.settling import limit_duty, settle_measure
+
+    duty = limit_duty(result.columns, plant.parameter("V_p_max"), plant.parameter("Vd_p_max"))
+    print(
+        f"pump at its limits: command at V_p,max {duty.command:.1%} of the run, displacement "
+        f"rate at its limit {duty.rate:.1%}"
+    )
+    settle = settle_measure(result.time_s, result.columns)
+    if settle.judged:
+        print(
+            f"after the road ({settle.settle_s:.1f} s from {settle.excitation_end_s:.2f} s): "
+            f"pitch acceleration {settle.tail_rms:.3f} rad/s² r.m.s. in the last second, "
+            f"{settle.decay_ratio:.2f} of the second before"
+            + (" (persistent oscillation)" if settle.persistent else "")
+        )
 
 
 def _stopped(error: ModelValidityError, output: str | None, plot: str | None, title: str) -> str:
