@@ -239,14 +239,17 @@ def _compare(args: argparse.Namespace, machine: str, course: object, settings: o
 
 
 def _print_events(events: tuple[Event, ...]) -> None:
-    """Print the count of events per kind and the first few."""
+    """Print the count of events per kind, the first few, and always the stop outside the
+    model's validity and a persistent oscillation (what ends or judges the run)."""
     kinds = sorted({event.kind for event in events})
     counts = ", ".join(f"{sum(e.kind == kind for e in events)} {kind}" for kind in kinds)
     print(f"events: {len(events)}" + (f" ({counts})" if counts else ""))
-    for event in events[:_SHOWN_EVENTS]:
+    shown = list(events[:_SHOWN_EVENTS])
+    shown += [e for e in events[_SHOWN_EVENTS:] if e.kind in ("validity", "persistent_oscillation")]
+    for event in shown:
         print(f"  {event.describe()}")
-    if len(events) > _SHOWN_EVENTS:
-        print(f"  ... {len(events) - _SHOWN_EVENTS} more (all in the result's events)")
+    if len(events) > len(shown):
+        print(f"  ... {len(events) - len(shown)} more (all in the result's events)")
 
 
 def _print_limits(result, plant) -> None:
