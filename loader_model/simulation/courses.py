@@ -160,18 +160,14 @@ def paper_course(
             f"got {speed_kmh!r}"
         )
     spacing_m = PAPER_SPACING_M[float(speed_kmh)]
-    profile = board_course(
-        PAPER_BOARD_COUNT,
-        height_m=BOARD_HEIGHT_M,
-        width_m=board_width_m,
-        spacing_m=spacing_m,
-        first_board_m=0.0,
+    return boards_at_speed(
+        speed_kmh,
+        board_width_m=board_width_m,
         position_jitter_m=position_jitter_m,
         seed=seed,
+        settle_s=settle_s,
         name=f"paper course, {speed_kmh:g} km/h: 5 boards 40 mm, {spacing_m:g} m apart",
     )
-    settle_s = as_number(settle_s, "settle_s", "s", minimum=0.0, maximum=60.0)
-    return Course(profile, kmh_to_m_s(speed_kmh), -LEAD_IN_M, settle_s, profile.name)
 
 
 def board_spacing_m(speed_kmh: float) -> float:
@@ -185,9 +181,11 @@ def board_spacing_m(speed_kmh: float) -> float:
 def boards_at_speed(
     speed_kmh: float,
     *,
+    board_width_m: float = BOARD_WIDTH_M,
     position_jitter_m: float = 0.0,
     seed: int = 0,
     settle_s: float = 3.0,
+    name: str | None = None,
 ) -> Course:
     """The paper's five 40 mm boards (section 5.3) at any speed, spaced by
     :func:`board_spacing_m`; at 9 and 18 km/h the same course as :func:`paper_course`.
@@ -196,10 +194,14 @@ def boards_at_speed(
     ----------
     speed_kmh : float
         Driven speed in km/h, (0, 100].
+    board_width_m : float
+        Board width in m (default: the assumed 2x6 plank, module notes).
     position_jitter_m, seed : float, int
         Standard deviation in m of a seeded normal shift of each board (boards laid by hand).
     settle_s : float
         Seconds driven after the rear axle has left the last board, [0, 60].
+    name : str, optional
+        Label (default: the boards, their spacing and the speed).
     """
     speed_kmh = as_number(
         speed_kmh, "speed_kmh", "km/h", minimum=0.0, maximum=100.0, strict_minimum=True
@@ -208,12 +210,12 @@ def boards_at_speed(
     profile = board_course(
         PAPER_BOARD_COUNT,
         height_m=BOARD_HEIGHT_M,
-        width_m=BOARD_WIDTH_M,
+        width_m=board_width_m,
         spacing_m=spacing_m,
         first_board_m=0.0,
         position_jitter_m=position_jitter_m,
         seed=seed,
-        name=f"5 boards 40 mm, {spacing_m:g} m apart, at {speed_kmh:g} km/h",
+        name=name or f"5 boards 40 mm, {spacing_m:g} m apart, at {speed_kmh:g} km/h",
     )
     settle_s = as_number(settle_s, "settle_s", "s", minimum=0.0, maximum=60.0)
     return Course(profile, kmh_to_m_s(speed_kmh), -LEAD_IN_M, settle_s, profile.name)

@@ -119,3 +119,18 @@ def test_events_name_the_limits_and_the_persistent_oscillation() -> None:
     assert kinds["pump_saturation"].end_s == pytest.approx(0.099)
     assert kinds["persistent_oscillation"].start_s == pytest.approx(2.0, abs=PERIOD_S)
     assert kinds["persistent_oscillation"].extreme == pytest.approx(3.0 / math.sqrt(2), rel=1e-3)
+
+
+def test_boards_at_any_speed_follow_the_papers_spacing() -> None:
+    """The paper's course (section 5.3: 6 m at 9 km/h, 9 m at 18 km/h) is the spacing rule's."""
+    from loader_model.simulation.courses import board_spacing_m, boards_at_speed, paper_course
+
+    for speed, spacing in ((9.0, 6.0), (18.0, 9.0)):
+        assert board_spacing_m(speed) == spacing
+        paper, rule = paper_course(speed), boards_at_speed(speed)
+        np.testing.assert_array_equal(paper.profile.distance_m, rule.profile.distance_m)
+        assert paper.speed_m_s == rule.speed_m_s
+    leading = boards_at_speed(13.5).profile.distance_m[::4]
+    np.testing.assert_allclose(np.diff(leading), 7.5, rtol=1e-12)
+    with pytest.raises(ValueError, match="speed_kmh"):
+        boards_at_speed(0.0)
