@@ -403,18 +403,18 @@ def _bench_simulator() -> None:
     start = time.perf_counter()
     simulate(road, params, duration_s=20.0)
     _report("simulate 20 s: first call (with JIT)", time.perf_counter() - start, unit="s")
-    simulate(road, params, duration_s=20.0, substeps=4)
+    simulate(road, params, duration_s=20.0, substeps=None)
     fast = _median_seconds(lambda: simulate(road, params, duration_s=20.0), 7)
-    fixed = _median_seconds(lambda: simulate(road, params, duration_s=20.0, substeps=4), 7)
-    chosen = simulate(road, params, duration_s=20.0).metadata
+    adaptive = _median_seconds(lambda: simulate(road, params, duration_s=20.0, substeps=None), 7)
+    chosen = simulate(road, params, duration_s=20.0, substeps=None).metadata
     goal_line(
         "simulate 20 s (goal: real-time factor>=400)", f"{fast:9.3f} s, RTF {20.0 / fast:.0f}",
         20.0 / fast >= 400,
     )  # fmt: skip
     print(
-        f"{'':<42}{fixed / fast:.2f} x faster than 4 fixed substeps ({fixed:.3f} s, RTF "
-        f"{20.0 / fixed:.0f}); {chosen['mean_substeps']:.2f} substeps a period "
-        f"{chosen['substep_periods']}"
+        f"{'':<42}substeps chosen by the error: {adaptive:.3f} s, RTF {20.0 / adaptive:.0f}, "
+        f"{fast / adaptive:.2f} x the speed of the default 4 fixed substeps; "
+        f"{chosen['mean_substeps']:.2f} substeps a period {chosen['substep_periods']}"
     )
     _in_process_run()
     span = BASELINE_SPAN_S
@@ -473,7 +473,8 @@ def _bench_simulator() -> None:
 
 def _in_process_run() -> None:
     """One 10 s run of the paper's course at 9 km/h in a warm process (skyhook, full bucket, the
-    Table 6 trial's plant), as the robustness study runs them: chosen and 4 fixed substeps."""
+    Table 6 trial's plant), as the robustness study runs them: the default 4 fixed substeps
+    and the substeps chosen by their error."""
     from loader_model.experiments.trials import controller_arguments, plant_for
     from loader_model.simulation import paper_course
     from loader_model.simulation.simulator import course_input, simulate
@@ -482,16 +483,16 @@ def _in_process_run() -> None:
     road = course_input(paper_course(9.0), params)
     control = controller_arguments("skyhook", "full", params)
     times = {}
-    for substeps in (None, 4):
+    for substeps in (4, None):
         simulate(road, params, duration_s=10.0, substeps=substeps, **control)
         times[substeps] = _median_seconds(
             lambda s=substeps: simulate(road, params, duration_s=10.0, substeps=s, **control), 7
         )
     goal_line(
-        "one 10 s run in-process (goal <= 40 ms)", f"{times[None] * 1e3:9.1f} ms",
-        times[None] <= 0.040,
+        "one 10 s run in-process (goal <= 40 ms)", f"{times[4] * 1e3:9.1f} ms",
+        times[4] <= 0.040,
     )  # fmt: skip
-    print(f"{'':<42}4 fixed substeps {times[4] * 1e3:.1f} ms ({times[4] / times[None]:.2f} x)")
+    print(f"{'':<42}chosen substeps {times[None] * 1e3:.1f} ms ({times[4] / times[None]:.2f} x)")
 
 
 def _percent(values: np.ndarray) -> str:

@@ -67,17 +67,18 @@ def pytest_configure(config: pytest.Config) -> None:
 
 
 def _compile_shared_period(index: int) -> None:
-    """The default (error-controlled) periods of the hold, virtual-accumulator and skyhook
-    controllers and the bound's period of 4 fixed substeps (compile_period caches them)."""
+    """The default periods (4 substeps) of the hold, virtual-accumulator and skyhook
+    controllers and the hold's error-controlled one (compile_period caches them)."""
     from loader_model.experiments.trials import controller_arguments, plant_for
     from loader_model.simulation.controllers import hold_command_controller
+    from loader_model.simulation.simulator import DEFAULT_SUBSTEPS
     from loader_model.simulation.stepper import compile_period
 
     if index == 0:
         compile_period(hold_command_controller(), substeps=None)
     elif index == 1:
-        compile_period(hold_command_controller(), substeps=4)
+        compile_period(hold_command_controller(), substeps=DEFAULT_SUBSTEPS)
     else:
         name = ("virtual-accumulator", "skyhook")[index - 2]
         controller = controller_arguments(name, "empty", plant_for(name, "empty"))["controller"]
-        compile_period(controller, substeps=None)
+        compile_period(controller, substeps=DEFAULT_SUBSTEPS)

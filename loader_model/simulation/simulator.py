@@ -60,13 +60,13 @@ __all__ = [
 #: Periods per ``mapaccum`` call (0.5 s): the finiteness check runs after each chunk; measured
 #: fastest among 250-2000 on the development machine.
 DEFAULT_CHUNK_PERIODS = 500
-#: ROS2 steps per 1 ms period: None, the fewest of 1, 2, 4, 8 whose error estimate stays within
-#: a tolerance, period by period (:mod:`~loader_model.simulation.adaptive`; its accuracy
-#: against CVODES at rtol 1e-10 in the simulation guide). Fixed counts remain available: on
-#: closed load-holding valves (baseline, passive) one fixed step per period parts from the
-#: reference (measured, empty bucket, 9 km/h paper course, seat pad a_total: tandem-cam tyres
-#: −2.2 % with 1 substep, −1.6 % with 2, +0.24 % with 4, 0.00 % with 8).
-DEFAULT_SUBSTEPS: int | None = None
+#: ROS2 steps per 1 ms period. On closed load-holding valves (baseline, passive) one step per
+#: period parts from the CVODES reference at rtol 1e-10 (measured, empty bucket, 9 km/h paper
+#: course, seat pad a_total: tandem-cam tyres −2.2 % with 1 substep, −1.6 % with 2, +0.24 % with
+#: 4, 0.00 % with 8). ``substeps=None`` chooses them period by period by their error estimate
+#: (:mod:`~loader_model.simulation.adaptive`): as accurate on the 18 runs of the simulation
+#: guide, not measurably faster on this plant (the guide says why), so not the default.
+DEFAULT_SUBSTEPS: int | None = 4
 #: Outputs that are states of the same name and value; they appear once in the result.
 _STATE_OUTPUTS = frozenset(OUTPUT_NAMES) & frozenset(STATE_NAMES)
 
@@ -205,7 +205,7 @@ def simulate(
     period_s : float
         Controller period h in s.
     substeps : int, optional
-        ROS2 steps per period; default (None): the fewest of
+        ROS2 steps per period (default :data:`DEFAULT_SUBSTEPS`); None: the fewest of
         :data:`~loader_model.simulation.adaptive.SUBSTEP_COUNTS` whose error estimate stays
         within :data:`~loader_model.simulation.adaptive.STEP_TOLERANCE`, period by period.
     jit : bool

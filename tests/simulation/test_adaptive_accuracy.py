@@ -2,10 +2,11 @@
 
 Every controller, both loads, the paper's course at 9 and 18 km/h, and an ISO 8608 class D road
 (60 m, seed 1) at 20 km/h (empty baseline, full skyhook): the seat-pad signals (f_Px, f_Py, θ̈1)
-in the normalised r.m.s. norm ‖s − s_ref‖_rms / ‖s_ref − s_ref(0)‖_rms, the simulator's default
-(:mod:`loader_model.simulation.adaptive`) and the four fixed substeps of before on the same run.
-Measured on a 2-core AMD EPYC (the simulation guide has the table): the default's error is 0.63
-to 1.19 times the four substeps' per signal (median 1.00). Single events dominate both errors
+in the normalised r.m.s. norm ‖s − s_ref‖_rms / ‖s_ref − s_ref(0)‖_rms, the substeps chosen by
+their error (``substeps=None``, :mod:`loader_model.simulation.adaptive`) and the default four
+fixed substeps on the same run. Measured on the shared 2-core machine (the simulation guide has
+the figures): the chosen substeps' error is 0.21 to 1.19 times the four substeps' per signal
+(median 0.96). Single events dominate both errors
 (a tyre's stick-slip or lift-off resolved a little differently: at a looser tolerance 74 % of one
 run's error energy fell in one 0.5 s window), and which events shift turns on the last digits of
 the arithmetic, so the test allows 1.5 times per signal and a median of the ratios of 1.1.
@@ -13,7 +14,7 @@ At 18 km/h the baseline parts from the reference by 28-71 % with either stepping
 that sensitive: it changes its course after a board), so those two runs enter the median only.
 
 Energy (passive, whole 9 km/h course, trapezoid over the rows: ``simulation.energy_balance``):
-the default's residual measured 2.0e-4 / 1.8e-4 of the largest term (empty / full) against
+the chosen substeps' residual measured 2.0e-4 / 1.8e-4 of the largest term (empty / full) against
 8.0e-4 / 2.2e-4 with four substeps; the test asks that it be no worse than 1.5 times theirs.
 """
 
@@ -52,7 +53,7 @@ def _course(name: str):
 
 
 def _errors(course: str, load: str, controller: str) -> tuple[np.ndarray, np.ndarray]:
-    """(default, four fixed substeps): the seat signals' normalised r.m.s. errors."""
+    """(chosen substeps, four fixed substeps): the seat signals' normalised r.m.s. errors."""
     params = plant_for(controller, load)
     road = course_input(_course(course), params)
     control = controller_arguments(controller, load, params)

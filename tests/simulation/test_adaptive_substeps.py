@@ -47,7 +47,7 @@ def test_the_tolerance_at_its_limits_is_the_fixed_count(
     with a Jacobian each: within 5e-3 of each state's range (measured 8.7e-4 over the board)."""
     params, road = passive
     _with_tolerance(monkeypatch, tolerance)
-    chosen = simulate(road, params, duration_s=0.3, jit=False)
+    chosen = simulate(road, params, duration_s=0.3, substeps=None, jit=False)
     plain = simulate(road, params, duration_s=0.3, substeps=fixed, jit=False)
     assert chosen.metadata["substep_periods"] == {str(fixed): chosen.time_s.size}
     assert chosen.metadata["mean_substeps"] == fixed
@@ -61,9 +61,9 @@ def test_smooth_stretches_take_one_substep_and_a_board_more(passive) -> None:
     the front and rear axles over it) some periods take more, most still one."""
     params, road = passive
     flat = course_input(Course(flat_road(5.0), 2.5, -0.3, 1.0, ""), params)
-    rest = simulate(road=flat, params=params, duration_s=0.5)
+    rest = simulate(road=flat, params=params, duration_s=0.5, substeps=None)
     assert rest.metadata["substep_periods"] == {"1": rest.time_s.size}
-    board = simulate(road, params, duration_s=0.6)
+    board = simulate(road, params, duration_s=0.6, substeps=None)
     counts = {int(n): k for n, k in board.metadata["substep_periods"].items()}
     assert sum(counts.values()) == board.time_s.size
     assert max(counts) >= 4
