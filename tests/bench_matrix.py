@@ -46,7 +46,8 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as empty:
         cold = matrix_seconds(2, cache=empty)[1]
     one_core = matrix_seconds(1)[1]
-    print(f"{'64-run matrix, 2 jobs (goal <= 5 s)':<42}{warm:9.2f} s  (whole process, warm cache)")
+    met = "goal met" if warm <= 3.0 else "GOAL MISSED"
+    print(f"{'64-run matrix, 2 jobs (goal <= 3 s)':<42}{warm:9.2f} s  {met} (whole process, warm)")
     print(f"{'64-run matrix, 2 jobs, cold cache':<42}{cold:9.2f} s  (compiles each period)")
     print(f"{'baseline: 64-run matrix, 1 job':<42}{one_core:9.2f} s  ({one_core / warm:.2f} x)")
 

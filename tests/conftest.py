@@ -63,3 +63,38 @@ PAPER_LAYOUT = {
 def paper_layout() -> dict[str, float]:
     """Parameter values of a loader in the paper's sign layout (static loads left out)."""
     return dict(PAPER_LAYOUT)
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    """Before the xdist workers start: compile the periods most tests share into the machine's
+    cache, two at a time, so that the workers load them instead of each compiling the same
+    ones (``loader_model.simulation.compiled``). Nothing to do when the cache holds them or is
+    off, or inside a worker."""
+    if hasattr(config, "workerinput") or config.getoption("numprocesses", None) in (None, 0):
+        return
+    from concurrent.futures import ThreadPoolExecutor
+
+    from loader_model.simulation.compiled import cache_directory
+
+    if cache_directory() is None:
+        return
+    with ThreadPoolExecutor(2) as pool:
+        list(pool.map(_compile_shared_period, range(4)))
+
+
+def _compile_shared_period(index: int) -> None:
+    """The default periods (4 substeps) of the hold, virtual-accumulator and skyhook
+    controllers and the hold's error-controlled one (compile_period caches them)."""
+    from loader_model.experiments.trials import controller_arguments, plant_for
+    from loader_model.simulation.controllers import hold_command_controller
+    from loader_model.simulation.simulator import DEFAULT_SUBSTEPS
+    from loader_model.simulation.stepper import compile_period
+
+    if index == 0:
+        compile_period(hold_command_controller(), substeps=None)
+    elif index == 1:
+        compile_period(hold_command_controller(), substeps=DEFAULT_SUBSTEPS)
+    else:
+        name = ("virtual-accumulator", "skyhook")[index - 2]
+        controller = controller_arguments(name, "empty", plant_for(name, "empty"))["controller"]
+        compile_period(controller, substeps=DEFAULT_SUBSTEPS)

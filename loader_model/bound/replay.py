@@ -4,7 +4,9 @@
 controllers`: ``(z, y, settings) -> (z_next, u)`` with z the period counter k and settings
 (M, u_0 … u_{N−1}); it ignores y and returns u_j for k in [jM, (j + 1) M), the last value after
 the table. :func:`replay` runs it with the simulator (same ROS2 scheme, 1 ms step and 1 kHz
-zero-order hold as every controller) from the static equilibrium and returns the result, whose
+zero-order hold as every controller, the rollout's fixed substeps
+:data:`~loader_model.bound.trajectory.BOUND_SUBSTEPS`) from the static equilibrium and
+returns the result, whose
 :meth:`~loader_model.simulation.result.SimulationResult.seat_evaluation` is the report's a_total.
 """
 
@@ -15,6 +17,7 @@ from functools import cache
 import casadi as ca
 import numpy as np
 
+from loader_model.bound.trajectory import BOUND_SUBSTEPS
 from loader_model.plant.plant import OUTPUT_NAMES
 from loader_model.plant.scenario import PlantScenario
 from loader_model.simulation.result import SimulationResult
@@ -52,4 +55,5 @@ def replay(
     scenario = closed_loop(
         plant, playback_controller(table.size), np.concatenate([[hold_periods], table]), [0.0]
     )
-    return simulate(road, scenario, duration_s=table.size * hold_periods * period_s)
+    duration_s = table.size * hold_periods * period_s
+    return simulate(road, scenario, duration_s=duration_s, substeps=BOUND_SUBSTEPS)

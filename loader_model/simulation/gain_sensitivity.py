@@ -52,7 +52,10 @@ from loader_model.simulation import refinement
 from loader_model.simulation.compiled import CompilationError, compiled_function
 from loader_model.simulation.stepper import rolled_period, ros2_period, step_error_scales
 
-__all__ = ["GainGradient", "gain_gradient", "sensitivity_period"]
+__all__ = ["FIXED_SUBSTEPS", "GainGradient", "gain_gradient", "sensitivity_period"]
+
+#: ROS2 substeps per period when the simulator's default chooses them by their error estimate.
+FIXED_SUBSTEPS = 4
 
 
 @functools.cache
@@ -198,7 +201,9 @@ def gain_gradient(
     )
     from loader_model.simulation.validity_check import raise_if_not_finite
 
-    period_s, substeps = CONTROLLER_PERIOD_S, DEFAULT_SUBSTEPS
+    # fixed substeps, as the optimal-control bound's rollout: a change of the error-controlled
+    # count would be a jump in the cost (the simulator's default is fixed too)
+    period_s, substeps = CONTROLLER_PERIOD_S, DEFAULT_SUBSTEPS or FIXED_SUBSTEPS
     plant, controller = scenario.plant, scenario.controller
     layout, machine = plant.layout, plant.machine
     nx, nz = len(layout.state_names), controller.size1_in(0)

@@ -18,13 +18,16 @@ import numpy as np
 
 from loader_model.simulation.stepper import plant_steps
 
-__all__ = ["REFINEMENT", "STEP_ERROR_LIMIT", "refine_period"]
+__all__ = ["PART_SUBSTEPS", "REFINEMENT", "STEP_ERROR_LIMIT", "refine_period"]
 
 #: Largest error estimate of a period's substeps, in units of the states' scales, above which
 #: its plant is integrated again (module notes).
 STEP_ERROR_LIMIT = 30.0
-#: Substeps of a refined period, as a multiple of the run's.
+#: Substeps of a refined period, as a multiple of the run's (of the largest count where the
+#: substeps are chosen by their error, :data:`~loader_model.simulation.adaptive.SUBSTEP_COUNTS`).
 REFINEMENT = 4
+#: Most ROS2 steps of one part of a refined period: more substeps are more parts.
+PART_SUBSTEPS = 4
 
 
 def refine_period(
@@ -39,15 +42,18 @@ def refine_period(
 ) -> np.ndarray:
     """The carry after a period whose error estimate passed :data:`STEP_ERROR_LIMIT` (module
     notes), its plant integrated again with :data:`REFINEMENT` times ``substeps`` ROS2 steps:
-    :data:`REFINEMENT` parts of the period of ``substeps`` steps each
+    :data:`REFINEMENT` parts of the period of ``substeps`` steps each, or of
+    :data:`PART_SUBSTEPS` steps each and as many more parts
     (:func:`~loader_model.simulation.stepper.plant_steps`, the exogenous input linear over the
     period as in the period Function). The controller's part, z and the command u held over
-    the period, is the coarse period's ``coarse_next`` (the carry it returned)."""
-    steps = plant_steps(period_s / REFINEMENT, substeps, machine)
+    the period (the carry's last entry), is the coarse period's ``coarse_next`` (the carry it
+    returned)."""
+    parts = REFINEMENT * max(1, substeps // PART_SUBSTEPS)
+    steps = plant_steps(period_s / parts, min(substeps, PART_SUBSTEPS), machine)
     nx = steps.size1_in(0)
     state, command = carry[:nx], coarse_next[-1]
-    for part in range(REFINEMENT):
-        start = w0 + (w1 - w0) * (part / REFINEMENT)
-        end = w1 if part == REFINEMENT - 1 else w0 + (w1 - w0) * ((part + 1) / REFINEMENT)
+    for part in range(parts):
+        start = w0 + (w1 - w0) * (part / parts)
+        end = w1 if part == parts - 1 else w0 + (w1 - w0) * ((part + 1) / parts)
         state = np.asarray(steps(state, command, start, end, params), dtype=float).ravel()
     return np.concatenate([state, coarse_next[nx:]])

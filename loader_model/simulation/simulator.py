@@ -35,6 +35,7 @@ from loader_model.control.sensors import SENSOR_NAMES, SensorModel, quantise
 from loader_model.plant.plant import OUTPUT_NAMES, STATE_NAMES
 from loader_model.plant.scenario import PlantScenario
 from loader_model.simulation import refinement, validity_check
+from loader_model.simulation.adaptive import SUBSTEP_COUNTS
 from loader_model.simulation.controllers import CONTROLLER_PERIOD_S
 from loader_model.simulation.courses import Course
 from loader_model.simulation.events import DEFAULT_AIRBORNE_MIN_S, find_events
@@ -59,13 +60,13 @@ __all__ = [
 #: Periods per ``mapaccum`` call (0.5 s): the finiteness check runs after each chunk; measured
 #: fastest among 250-2000 on the development machine.
 DEFAULT_CHUNK_PERIODS = 500
-#: ROS2 steps per 1 ms period. On closed load-holding valves (baseline, passive: errata 11) the
-#: sealed piston side swings between the make-up check (20 bar) and the relief (230 bar) over the
-#: boards, and one step per period parts from the CVODES reference at rtol 1e-10 (measured, empty
-#: bucket, 9 km/h paper course, seat pad a_total: tandem-cam tyres −2.2 % with 1 substep, −1.6 %
-#: with 2, +0.24 % with 4, 0.00 % with 8; rigid discs −4.6 %, −5.3 %, 0.00 %, 0.00 %). Four cost
-#: 3.0x the integration time of one (38 ms -> 114 ms for the 15 s course, warm, this machine).
-DEFAULT_SUBSTEPS = 4
+#: ROS2 steps per 1 ms period. On closed load-holding valves (baseline, passive) one step per
+#: period parts from the CVODES reference at rtol 1e-10 (measured, empty bucket, 9 km/h paper
+#: course, seat pad a_total: tandem-cam tyres −2.2 % with 1 substep, −1.6 % with 2, +0.24 % with
+#: 4, 0.00 % with 8). ``substeps=None`` chooses them period by period by their error estimate
+#: (:mod:`~loader_model.simulation.adaptive`): as accurate on the 18 runs of the simulation
+#: guide, not measurably faster on this plant (the guide says why), so not the default.
+DEFAULT_SUBSTEPS: int | None = 4
 #: Outputs that are states of the same name and value; they appear once in the result.
 _STATE_OUTPUTS = frozenset(OUTPUT_NAMES) & frozenset(STATE_NAMES)
 
@@ -166,7 +167,7 @@ def simulate(
     sensors: SensorModel | None = None,
     duration_s: float | None = None,
     period_s: float = CONTROLLER_PERIOD_S,
-    substeps: int = DEFAULT_SUBSTEPS,
+    substeps: int | None = DEFAULT_SUBSTEPS,
     jit: bool = True,
     chunk_periods: int = DEFAULT_CHUNK_PERIODS,
     airborne_min_s: float = DEFAULT_AIRBORNE_MIN_S,
@@ -203,8 +204,10 @@ def simulate(
         Simulated time (default: the road table's); N = floor(duration / h) periods.
     period_s : float
         Controller period h in s.
-    substeps : int
-        ROS2 steps per period (default :data:`DEFAULT_SUBSTEPS`).
+    substeps : int, optional
+        ROS2 steps per period (default :data:`DEFAULT_SUBSTEPS`); None: the fewest of
+        :data:`~loader_model.simulation.adaptive.SUBSTEP_COUNTS` whose error estimate stays
+        within :data:`~loader_model.simulation.adaptive.STEP_TOLERANCE`, period by period.
     jit : bool
         JIT-compile the period (falls back to the SX virtual machine without a C compiler).
     chunk_periods : int
@@ -252,25 +255,29 @@ def simulate(
     monitor = validity_check.ValidityMonitor(bounds, period_s, layout)
     machine = scenario.plant.machine
     period, backend = compile_period(controller, period_s, substeps, jit, machine)
+    refine_from = max(SUBSTEP_COUNTS) if substeps is None else int(substeps)
     chunk = min(int(chunk_periods), count)
     roll = rolled_period(period, chunk)
-    ncarry = len(state_names) + nz + 1
+    adaptive = substeps is None
+    ncarry = period.size1_in(0)
     # Arrays in CasADi's column-major layout: a (chunk, n) C-order array is an (n, chunk) matrix.
-    carry = np.concatenate([x0, z0, [u0]])
+    carry = np.concatenate([x0, z0, [0.0] if adaptive else [], [u0]])  # level 0: one substep
     w0, w1 = np.empty((chunk, n_w)), np.empty((chunk, n_w))
     e_block = np.zeros((chunk, len(output_names)))
     block = np.empty((chunk, ncarry))
     y_block, u_block = np.empty((chunk, len(output_names))), np.empty(chunk)
-    error_block = np.empty(chunk)
+    error_block, count_block = np.empty(chunk), np.empty(chunk)
     buffer, trigger = roll.buffer()
     for index, array in enumerate((carry, w0, w1, params, settings_vector, e_block, y_steps)):
         buffer.set_arg(index, memoryview(array))
-    for index, array in enumerate((block, y_block, u_block, error_block)):
-        buffer.set_res(index, memoryview(array))
+    for index, array in enumerate((block, y_block, u_block, error_block, count_block)):
+        if index < roll.n_out():
+            buffer.set_res(index, memoryview(array))
     carries = np.empty((count, ncarry))
     outputs = np.empty((count, len(output_names)))
     commands = np.empty(count)
     refined: list[int] = []
+    taken: dict[int, int] = {}
     start_wall = time.perf_counter()
     start = 0
     while start < count:
@@ -286,7 +293,7 @@ def simulate(
             size, index = int(failed[0]) + 1, start + int(failed[0])
             before = carry if failed[0] == 0 else block[failed[0] - 1]
             block[failed[0]] = refinement.refine_period(
-                period_s, substeps, machine, before, block[failed[0]], exogenous[index],
+                period_s, refine_from, machine, before, block[failed[0]], exogenous[index],
                 exogenous[index + 1], params,
             )  # fmt: skip
             stop = start + size
@@ -294,6 +301,10 @@ def simulate(
         carries[start] = carry
         carries[start + 1 : stop] = block[: size - 1]
         outputs[start:stop] = y_block[:size]
+        counts, periods = np.unique(count_block[:size], return_counts=True) if adaptive else (
+            [substeps], [size])  # fmt: skip
+        for substep_count, number in zip(counts, periods, strict=True):
+            taken[int(substep_count)] = taken.get(int(substep_count), 0) + int(number)
         commands[start:stop] = u_block[:size]
         violation = monitor.check(start, carries[start:stop], outputs[start:stop])
         if violation is not None:  # keep the rows up to it: the evidence
@@ -337,7 +348,9 @@ def simulate(
         "backend": backend,
         "scheme": "ROS2",
         "period_s": period_s,
-        "substeps": int(substeps),
+        "substeps": "adaptive" if adaptive else int(substeps),
+        "substep_periods": {str(n): taken[n] for n in sorted(taken)},
+        "mean_substeps": sum(n * k for n, k in taken.items()) / max(sum(taken.values()), 1),
         "sensors": None if sensors is None else dataclasses.asdict(sensors),
         "wall_time_s": wall_s,
         "real_time_factor": count * period_s / wall_s,

@@ -272,18 +272,20 @@ def plant_steps(period_s: float, substeps: int, machine: str = DEFAULT_MACHINE) 
     )
 
 
-_COMPILED: dict[tuple[str, float, int, bool, str], tuple[ca.Function, str]] = {}
+_COMPILED: dict[tuple[str, float, int | None, bool, str], tuple[ca.Function, str]] = {}
 
 
 def compile_period(
     controller: ca.Function,
     period_s: float = 1e-3,
-    substeps: int = 1,
+    substeps: int | None = 1,
     jit: bool = True,
     machine: str = DEFAULT_MACHINE,
 ) -> tuple[ca.Function, str]:
     """The period Function, compiled to C if ``jit`` and a C compiler works; cached per process
-    and, compiled, per machine (:mod:`~loader_model.simulation.compiled`).
+    and, compiled, per machine (:mod:`~loader_model.simulation.compiled`). ``substeps`` None:
+    the substeps chosen by their error estimate
+    (:func:`~loader_model.simulation.adaptive.adaptive_period_function`).
 
     Returns
     -------
@@ -291,9 +293,14 @@ def compile_period(
         The Function and its backend, ``"jit"`` (compiled C) or ``"sx"`` (the fallback when
         compiling fails).
     """
-    key = (controller.serialize(), float(period_s), int(substeps), bool(jit), machine)
+    key = (controller.serialize(), float(period_s), substeps, bool(jit), machine)
     if key not in _COMPILED:
-        period = period_function(controller, period_s, substeps, machine)
+        if substeps is None:  # error-controlled substeps
+            from loader_model.simulation.adaptive import adaptive_period_function
+
+            period = adaptive_period_function(controller, period_s, machine)
+        else:
+            period = period_function(controller, period_s, int(substeps), machine)
         compiled, backend = period, "sx"
         if jit:
             try:
@@ -304,14 +311,14 @@ def compile_period(
     return _COMPILED[key]
 
 
-_ROLLED: dict[tuple[int, int], ca.Function] = {}
+_ROLLED: dict[tuple[int, int], tuple[ca.Function, ca.Function]] = {}
 
 
 def rolled_period(period: ca.Function, chunk: int) -> ca.Function:
     """``period.mapaccum`` over ``chunk`` periods with params, settings and the sensors' steps
     given once (MX wrapper that repeats them), built once per period Function and chunk size."""
     key = (id(period), chunk)
-    if key not in _ROLLED:
+    if key not in _ROLLED or _ROLLED[key][0] is not period:  # an id is reused after its object
         mapped = period.mapaccum("roll_mapped", chunk)
         carry = ca.MX.sym("carry", period.size1_in(0))
         w0 = ca.MX.sym("w0", period.size1_in(1), chunk)
@@ -329,11 +336,14 @@ def rolled_period(period: ca.Function, chunk: int) -> ca.Function:
             y_error,
             ca.repmat(y_step, 1, chunk),
         )
-        _ROLLED[key] = ca.Function(
-            "roll",
-            [carry, w0, w1, params, settings, y_error, y_step],
-            outputs,
-            ["carry", "w0", "w1", "params", "settings", "y_error", "y_step"],
-            ["carry_next", "y", "u", "step_error"],
+        _ROLLED[key] = (
+            period,
+            ca.Function(
+                "roll",
+                [carry, w0, w1, params, settings, y_error, y_step],
+                outputs,
+                ["carry", "w0", "w1", "params", "settings", "y_error", "y_step"],
+                period.name_out(),
+            ),
         )
-    return _ROLLED[key]
+    return _ROLLED[key][1]
