@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from tests import bench_robustness, bench_startup
+from tests import bench_design, bench_robustness, bench_startup
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -87,6 +87,7 @@ def main() -> int:
     _comfort_design()
     _bench_bound()
     bench_robustness.main()
+    bench_design.main()
     _bench_test_suite()
     return 0
 
