@@ -25,11 +25,20 @@ pytestmark = pytest.mark.slow
 #: J is a sum of six squared misfits of about 0.5-5 each. The trials are sensitive to the last
 #: digits of the parameters through the tyres' lift-offs: the shipped estimates through the fit's
 #: log/linear search scale and back (a change of 1e-16 relative) moved J by 1.4e-5 (9 km/h) and
-#: 1.0e-4 (18 km/h) relative (measured). 2e-3 holds that with margin; a model change moves J in
-#: its first or second digit.
-COST_RTOL = 2e-3
-#: Percentage points within which a recomputed budget cell must equal the shipped one.
-CELL_TOLERANCE_PP = 0.05
+#: 1.0e-4 (18 km/h) relative on one machine. Across CPU types the lift-offs turn on NumPy's SIMD
+#: kernels: the files were made on an AMD EPYC without AVX-512; recomputed on an Intel Xeon with
+#: AVX-512, J at the start and at the optimum moved by 9.0e-4 and 1.9e-5 at 9 km/h but by 4.7 %
+#: and 5.4 % at 18 km/h (measured). 0.1 holds that with margin and still catches a model change
+#: that moves J in its first digit; the 18 km/h cost's dependence on the last digits is a known
+#: weakness of a calibration on one trial per cell.
+COST_RTOL = 0.1
+#: Percentage points within which a recomputed budget cell must equal the shipped one: across
+#: the two CPU types above the cells moved by up to 0.88 pp (18 km/h, empty, skyhook, model as
+#: built) and 0.02 pp (calibrated), measured.
+CELL_TOLERANCE_PP = 2.0
+#: Relative tolerance of the budget's nominal baseline a_total: 3.6e-3 apart across the two CPU
+#: types (18 km/h, empty, model as built), measured.
+BASELINE_RTOL = 1e-2
 
 
 def _summary(speed: float) -> dict:
@@ -77,4 +86,4 @@ def test_the_shipped_budget_is_current() -> None:
             ), (summary["label"], key)
         assert summary["within"] == want["within"]
         for key, value in summary["baseline_a_total"].items():
-            assert np.isclose(value, want["baseline_a_total"][key], rtol=1e-4), key
+            assert np.isclose(value, want["baseline_a_total"][key], rtol=BASELINE_RTOL), key
