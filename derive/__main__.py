@@ -73,7 +73,8 @@ def _derive_file(description: Path, output: Path | None) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(prog="python -m derive", description=__doc__)
+    # the module notes as plain-text help, without reST markup
+    parser = argparse.ArgumentParser(prog="python -m derive", description=__doc__.replace("``", ""))
     parser.add_argument(
         "description",
         nargs="?",
