@@ -184,9 +184,12 @@ def check_entries(where: str, raw: dict[str, Any]) -> None:
     for point, item in check.table("sensors", raw.get("sensors", {})).items():
         item = check.table(f"sensors.{point}", item)
         axes = item.get("axes")
-        if not (isinstance(axes, list) and axes and set(axes) <= set(_AXES)) or len(
-            set(axes)
-        ) != len(axes):
+        if not (
+            isinstance(axes, list)
+            and axes
+            and all(isinstance(axis, str) and axis in _AXES for axis in axes)
+            and len(set(axes)) == len(axes)
+        ):
             check.fail(f"sensors.{point}.axes", axes, 'give one or both of "x", "y", once each')
         if "label" in item:
             check.text(f"sensors.{point}.label", item["label"])

@@ -71,6 +71,11 @@ CASES = [
         r"sensors\.N\.axes: \['w'\] is not allowed; give one or both of \"x\", \"y\"",
     ),
     (
+        "sensor_axis_list",
+        _edit('axes = ["y"]', "axes = [[]]").encode(),
+        r"sensors\.N\.axes: \[\[\]\] is not allowed; give one or both of \"x\", \"y\"",
+    ),
+    (
         "path_name",
         _edit('name = "compact_wheel_loader"', 'name = "../../evil"').encode(),
         r"machine\.name: '\.\./\.\./evil' is not allowed; give a name: letters, digits",
