@@ -158,6 +158,8 @@ def test_one_linearisation_does_not_compile_the_period(plant, road, tmp_path, mo
     assert np.max(np.abs(linearisation.a[k] - expected)) <= 1e-12 * np.max(np.abs(expected))
 
 
+# slow: 15 s (compiles the chunked linearisation)
+@pytest.mark.slow
 def test_linearise_is_the_linearised_period_at_every_sampled_period(plant, road):
     """The compiled, chunked evaluation of :func:`linearise` against the period Function in
     CasADi's virtual machine at the chunks' edges: equal to 1e-12 of each matrix's size

@@ -38,6 +38,8 @@ def test_design_errors_are_clear_and_write_nothing(
     assert list(tmp_path.iterdir()) == []
 
 
+# slow: 12 s (an IPOPT design, its check and a simulation of the written file)
+@pytest.mark.slow
 def test_designed_gains_go_to_a_settings_file_that_simulate_runs(tmp_path: Path, capsys) -> None:
     from loader_model.control.settings import load_settings
 

@@ -96,6 +96,8 @@ def test_wheel_loader_designed_gains_are_the_machines_design() -> None:
     assert not np.allclose(gains["optimised"]["full"], skid_steer["optimised"]["full"], rtol=0.1)
 
 
+# slow: 14 s (a robustness study of the wheel loader); run by `make test-slow`
+@pytest.mark.slow
 def test_wheel_loader_study_runs_designed_gains(tmp_path: Path) -> None:
     study = parse_study(DESIGNED.replace(", fixed = [1.0, 2.0, 3.0, 0.5]", ""))
     rows = run_study(study, tmp_path / "wl_designed", workers=1, progress=False).to_pylist()

@@ -56,6 +56,8 @@ def test_the_tolerance_at_its_limits_is_the_fixed_count(
     assert np.max(np.abs(ours - theirs) / scale) <= within
 
 
+# slow: 9 s (the opt-in error-controlled stepping compiled and run twice)
+@pytest.mark.slow
 def test_smooth_stretches_take_one_substep_and_a_board_more(passive) -> None:
     """At rest on a flat road every period takes one substep; over the board (first 0.6 s,
     the front and rear axles over it) some periods take more, most still one."""
