@@ -16,8 +16,12 @@ has its own category, the first of these that applies:
 - ``"failed"``: anything else that stopped the run (the sampled plant fails the parameter checks,
   the ISO 2631 evaluation refuses the signal); the reason is in the table.
 - ``"persistent-oscillation"``: the pitch acceleration does not decay after the road's
-  excitation ends (:func:`settle_ratio` above :data:`PERSISTENCE_RATIO` and above the same
-  sample's baseline's ratio): a limit cycle or a loop too lightly damped to count as ride control.
+  excitation ends, by the rule of the design check
+  (:class:`~loader_model.simulation.settling.SettleMeasure`: in the run's last second θ̈1 is
+  above :data:`~loader_model.simulation.settling.REST_FLOOR_RAD_S2` and keeps more than
+  :data:`~loader_model.simulation.settling.PERSISTENCE_RATIO` of the second before), and it
+  decays slower than the same sample's baseline: a limit cycle or a loop too lightly damped to
+  count as ride control.
 - ``"pump-saturated"``: the pump command at its displacement limit for more than
   :data:`SATURATION_DUTY_LIMIT` of the run: the controller spends the run against its limit, not
   controlling.
@@ -26,8 +30,9 @@ has its own category, the first of these that applies:
 
 The baseline's own row is ``"evaluated"``, ``"diverged"``, ``"outside-validity"`` or ``"failed"``:
 it is the reference its sample's comparisons are made against (its decay judges the others').
-``settle_ratio`` is NaN (not assessed) when the run ends less than 4 × :data:`SETTLE_WINDOW_S`
-after the excitation: a study sees persistence only with runs that go on past the road's end.
+``settle_ratio`` (the last second's r.m.s. over the second before) and ``settle_tail_rms`` are
+NaN (not assessed) when the run ends less than two seconds after the excitation: a study sees
+persistence only with runs that go on past the road's end.
 """
 
 from __future__ import annotations
@@ -38,15 +43,15 @@ from typing import Any
 
 import numpy as np
 
+from loader_model.simulation.settling import SettleMeasure, settle_measure
+
 __all__ = [
     "CATEGORIES",
     "FAILURES",
-    "PERSISTENCE_RATIO",
     "SATURATION_DUTY_LIMIT",
-    "SETTLE_WINDOW_S",
     "UNSTABLE_POLE_REAL",
     "categorise",
-    "settle_ratio",
+    "settle_columns",
 ]
 
 #: Every category, the evaluated one first (module notes).
@@ -65,68 +70,41 @@ FAILURES: tuple[str, ...] = CATEGORIES[1:-1]
 #: Largest real part of a loop pole [rad/s] still counted as stable: 1e-6 rad/s is a time
 #: constant of 11 days, far below any pole the designs place (their margin is 0.1 rad/s).
 UNSTABLE_POLE_REAL = 1e-6
-#: Length w [s] of the two windows of :func:`settle_ratio`; the run must go on 4 w after the
-#: excitation, so the windows are at least one w apart.
-SETTLE_WINDOW_S = 1.0
-#: A settle ratio above this (and above the same sample's baseline's) is a persistent oscillation.
-#: Measured on the skid-steer's paper course (9 and 18 km/h, both loads): with runs that end 4 s
-#: after the road, the baseline, whose 4.7 Hz boom mode is the least damped, 0.23-0.39, the
-#: shipped controllers and designs 0.001-0.16; on the example study with 20 s runs, the baseline
-#: 0.003-0.075, every other decaying run at most 0.005, the limit cycles 0.93 (twice the robust
-#: gain) and 1.28-3.72 (designed gains, stable on their linearised plants, and one virtual
-#: accumulator run).
-PERSISTENCE_RATIO = 0.5
 #: Largest share of the run the pump command may spend at its limit: beyond it the loop is mostly
 #: a bang-bang one, not the linear design. On the shipped example study (10 s runs) the designed
 #: gains reach at most 9.8 % (output-feedback LQR).
 SATURATION_DUTY_LIMIT = 0.2
 #: The simulator's errors (the first word of a row's ``reason``) and their categories.
 _RUN_ERRORS = {"SimulationError": "diverged", "ModelValidityError": "outside-validity"}
-#: Road input rate [m/s] below which the road counts as flat (the courses' flat parts are 0).
-_FLAT_M_S = 1e-9
 
 
-def settle_ratio(result: Any, window_s: float = SETTLE_WINDOW_S) -> float:
-    """How much of the pitch motion is left at the end of the run, after the excitation.
-
-    .. math:: r = \\frac{\\mathrm{rms}\\,\\ddot\\theta_1 \\text{ over } [T - w, T]}
-                       {\\mathrm{rms}\\,\\ddot\\theta_1 \\text{ over } [t_e + w, t_e + 2 w]}
-
-    with T the run's end and t_e the end of the excitation: the last sample in which any road
-    input rate ``wd_*`` of the run is non-zero. The first second after t_e is skipped: it holds
-    the tail of the last obstacle's forced response (measured on the skid-steer at 18 km/h, empty,
-    with twice the robust gain: 6.9 rad/s² in the first second, then 3.0-3.6 rad/s² in every
-    second to the end of a 20 s run, a limit cycle). A decaying response gives r well below 1, a
-    limit cycle about 1.
+def settle_columns(result: Any) -> dict[str, float]:
+    """The decay after the road's excitation of a run, as the result table's columns.
 
     Parameters
     ----------
     result : SimulationResult
-        The run (columns ``thetadd_1`` [rad/s²], the seat's pitch axis, and
-        ``wd_<axle><x|y>`` [m/s]).
-    window_s : float
-        Window length w in s.
+        The run (its time, θ̈1 and exogenous-input columns).
 
     Returns
     -------
-    float
-        r, or NaN if the run ends less than 4 w after the excitation (not assessed), 0 if the
-        first window holds no motion at all.
+    dict
+        ``settle_ratio``: the r.m.s. of θ̈1 in the run's last second over that in the second
+        before; ``settle_tail_rms``: the last second's r.m.s. [rad/s²]; both NaN when the run ends
+        less than two seconds after the excitation
+        (:func:`~loader_model.simulation.settling.settle_measure`).
     """
-    time = np.asarray(result.time_s, dtype=float)
-    rates = [np.asarray(result[n]) for n in result.names if n.startswith("wd_")]
-    moving = np.any(np.abs(np.column_stack(rates)) > _FLAT_M_S, axis=1) if rates else None
-    end = time[np.flatnonzero(moving)[-1]] if moving is not None and moving.any() else time[0]
-    if time[-1] - end < 4.0 * window_s:
-        return math.nan
-    from loader_model.simulation.result import seat_signal_names
+    measure = settle_measure(np.asarray(result.time_s, dtype=float), result.columns)
+    if not measure.judged:  # math.nan itself, as every missing value of a row
+        return dict.fromkeys(("settle_ratio", "settle_tail_rms"), math.nan)
+    return {"settle_ratio": measure.decay_ratio, "settle_tail_rms": measure.tail_rms}
 
-    pitch = np.asarray(result[seat_signal_names()["pitch"]], dtype=float)
-    first = pitch[(time > end + window_s) & (time <= end + 2.0 * window_s)]
-    last = pitch[time > time[-1] - window_s]
-    first_rms = float(np.sqrt(np.mean(first**2)))
-    last_rms = float(np.sqrt(np.mean(last**2)))
-    return last_rms / first_rms if first_rms > 0.0 else 0.0
+
+def _persistent(row: dict[str, Any], baseline_ratio: float) -> bool:
+    """The settling rule on a row's columns, and slower than its baseline (module notes)."""
+    ratio, tail = _value(row, "settle_ratio"), _value(row, "settle_tail_rms")
+    measure = SettleMeasure(math.nan, math.nan, tail / ratio if ratio > 0 else math.inf, tail)
+    return measure.persistent and not ratio <= baseline_ratio  # NaN baseline: not compared
 
 
 def _value(row: dict[str, Any], name: str) -> float:
@@ -148,8 +126,7 @@ def _run_category(row: dict[str, Any], duration_s: float, baseline_ratio: float)
         return "unstable"
     if row["failed"]:
         return _error_category(row)
-    ratio = _value(row, "settle_ratio")
-    if ratio > PERSISTENCE_RATIO and not ratio <= baseline_ratio:  # NaN baseline: not compared
+    if _persistent(row, baseline_ratio):
         return "persistent-oscillation"
     if _value(row, "pump_saturation_s") > SATURATION_DUTY_LIMIT * duration_s:
         return "pump-saturated"

@@ -34,11 +34,11 @@ from loader_model.robustness.outcomes import (
     CATEGORIES,
     FAILURES,
     SATURATION_DUTY_LIMIT,
-    SETTLE_WINDOW_S,
     UNSTABLE_POLE_REAL,
     categorise,
 )
 from loader_model.robustness.study import Study
+from loader_model.simulation.settling import TAIL_WINDOW_S
 
 __all__ = ["controller_summary", "report_text", "wilson_interval"]
 
@@ -212,7 +212,7 @@ def report_text(study: Study, table: Any, gains: dict | None = None) -> str:
         if s["settle_not_assessed"]:
             lines.append(
                 f"- decay after the road not assessed on {s['settle_not_assessed']} runs (they "
-                f"end less than {4 * SETTLE_WINDOW_S:g} s after the road's last excitation: "
+                f"end less than {2 * TAIL_WINDOW_S:g} s after the road's last excitation: "
                 "set a longer duration_s)"
             )
         if s["pump_saturation_s"].size and s["p_A_max_Pa"].size:

@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from loader_model.robustness.gains import Gains, max_pole_real
-from loader_model.robustness.outcomes import settle_ratio
+from loader_model.robustness.outcomes import settle_columns
 from loader_model.robustness.sampling import SampleSpec, sample_plant
 from loader_model.robustness.sensors import (
     corrupted_fixed_point,
@@ -29,6 +29,7 @@ from loader_model.robustness.sensors import (
     sensor_model,
 )
 from loader_model.robustness.study import Study
+from loader_model.simulation.settling import COMMAND_AT_LIMIT
 from loader_model.simulation.simulator import course_input, simulate
 
 if TYPE_CHECKING:
@@ -76,7 +77,7 @@ def _metrics(result: Any, max_displacement: float) -> dict[str, float]:
     evaluation = result.seat_evaluation()
     rms = {axis.axis: float(axis.weighted_rms) for axis in evaluation.axes}
     period = float(result.metadata["period_s"])
-    at_limit = np.abs(result["V_p_ref"]) >= max_displacement * (1.0 - 1e-9)
+    at_limit = np.abs(result["V_p_ref"]) >= max_displacement * COMMAND_AT_LIMIT
     saturated = period * np.count_nonzero(at_limit)
     return {
         **{f"a_w_{axis}": rms.get(axis, math.nan) for axis in AXES},
@@ -87,7 +88,7 @@ def _metrics(result: Any, max_displacement: float) -> dict[str, float]:
         "pump_saturation_s": float(saturated),
         "tyre_lift_offs": float(sum(e.kind == "tyre_off_ground" for e in result.events)),
         # decay after the road's excitation, for the persistent-oscillation category
-        "settle_ratio": settle_ratio(result),
+        **settle_columns(result),
     }
 
 
@@ -95,7 +96,7 @@ _EMPTY = dict.fromkeys(
     [
         *(f"a_w_{a}" for a in AXES),
         *("a_total", "p_A_max_Pa", "p_A_min_Pa", "p_B_max_Pa"),
-        *("pump_saturation_s", "tyre_lift_offs", "settle_ratio"),
+        *("pump_saturation_s", "tyre_lift_offs", "settle_ratio", "settle_tail_rms"),
     ],
     math.nan,
 )

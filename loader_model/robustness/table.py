@@ -7,10 +7,11 @@ its parameter-file path (SI units), the seat's ISO 2631-1 weighted r.m.s. per ax
 ``change_percent`` (a_total against the same sample's baseline), peak pressures ``p_A_max_Pa``,
 ``p_A_min_Pa``, ``p_B_max_Pa`` (gauge), ``pump_saturation_s`` (time with |V_p,ref| at or beyond V_p,max),
 ``tyre_lift_offs``, ``max_pole_real`` (largest real part of the plant-and-skyhook poles of the
-gain, rad/s; NaN for controllers without K_fb), ``settle_ratio`` (pitch motion left at the run's
-end after the road's excitation, :func:`~loader_model.robustness.outcomes.settle_ratio`; NaN if
-not assessed), ``failed``, ``reason`` and ``category`` (``"evaluated"`` or why the run is not
-counted: :mod:`~loader_model.robustness.outcomes`).
+gain, rad/s; NaN for controllers without K_fb), ``settle_ratio`` and ``settle_tail_rms`` (the
+r.m.s. of θ̈1 in the run's last second over that in the second before, and the last second's in
+rad/s², after the road's excitation: :func:`~loader_model.robustness.outcomes.settle_columns`;
+NaN if not assessed), ``failed``, ``reason`` and ``category`` (``"evaluated"`` or why the run is
+not counted: :mod:`~loader_model.robustness.outcomes`).
 """
 
 from __future__ import annotations
@@ -35,6 +36,7 @@ _METRICS = (
     "tyre_lift_offs",
     "max_pole_real",
     "settle_ratio",
+    "settle_tail_rms",
 )
 
 
@@ -102,7 +104,7 @@ def read_parts(folder: Path, study: Study) -> set[int]:
 def combine_parts(folder: Path, study: Study) -> Any:
     """Combine the part files, sorted by sample then controller, into ``results.parquet`` and
     ``results.csv`` in ``folder``; return the table. Parts written before the ``category`` and
-    ``settle_ratio`` columns existed are read with them empty, and their rows categorised here."""
+    ``settle_*`` columns existed are read with them empty, and their rows categorised here."""
     import pyarrow as pa
     import pyarrow.csv as csv
     import pyarrow.parquet as pq
