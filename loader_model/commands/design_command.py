@@ -59,6 +59,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="machine: quasi-Newton steps at most (default: 12)",
     )
     parser.add_argument(
+        "--start",
+        metavar="SETTINGS.toml",
+        default=None,
+        help="machine: start from the gains of this controller settings file (e.g. gains "
+        "refined on the course) instead of the linear design (default: the linear design)",
+    )
+    parser.add_argument(
         "--evaluations",
         type=int,
         default=120,
@@ -150,12 +157,27 @@ def _refine(args: argparse.Namespace, start, loads, params, machine: str):
     return result["gain"], note
 
 
+def _gains(gain) -> str:
+    import numpy as np
+
+    return " ".join(f"{g:8.3f}" for g in np.ravel(gain))
+
+
 def _on_machine(args: argparse.Namespace, start, machine: str):
-    """Optimise ``start`` on the nonlinear machine; print the scenarios beside the baseline."""
-    from loader_model.experiments.machine_design import design_on_machine
+    """Optimise ``start`` (or ``--start``'s gains) on the nonlinear machine; print the scenarios
+    beside the baseline."""
+    import numpy as np
+
+    from loader_model.experiments.machine_design import START_MARGIN_FACTOR, design_on_machine
 
     if args.iterations < 1:
         raise ValueError(f"--iterations {args.iterations}: allowed: an integer >= 1")
+    if args.start is not None:
+        from loader_model.control.settings import gain_norm_factors, load_settings
+
+        given = load_settings(args.start)
+        start = np.asarray(given.k_fb, dtype=float) / gain_norm_factors(given)
+        print(f"Start: the gains of {args.start} [{_gains(start)}]")
     print("Optimising on the nonlinear machine (exact gradients; relative to the baseline):")
     result = design_on_machine(
         start,
@@ -165,14 +187,20 @@ def _on_machine(args: argparse.Namespace, start, machine: str):
         max_iterations=args.iterations,
         progress=not args.no_progress,
     )
+    if not np.allclose(result.start_gain.ravel(), np.ravel(start), rtol=0.0, atol=0.0):
+        print(
+            f"  start moved to [{_gains(result.start_gain)}]: the nearest gains whose loop keeps "
+            f"{START_MARGIN_FACTOR:g}σ = {START_MARGIN_FACTOR * args.margin:g} rad/s (σ where "
+            "that is out of reach) on each load's linearised plant and on every sampled plant, "
+            "and, where its runs broke a constraint (pump limits, persistence), scaled toward zero"
+        )
     for label, value in result.a_total.items():
         base = result.baseline[label]
         print(
             f"  {label:<26} a_total {value:.3f} m/s², baseline {base:.3f} ({value / base - 1:+.1%})"
         )
-    gains = " ".join(f"{g:8.3f}" for g in result.gain.ravel())
     print(
-        f"  gains [{gains}]  J {result.start_cost:.4f} -> {result.cost:.4f} in "
+        f"  gains [{_gains(result.gain)}]  J {result.start_cost:.4f} -> {result.cost:.4f} in "
         f"{result.iterations} steps, {result.simulations} runs with sensitivities, "
         f"{result.rejected} candidates rejected by a constraint, {result.wall_s:.0f} s"
     )
@@ -208,6 +236,10 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
         raise ValueError(f"--speed {args.speed:g} with --method refine: allowed: 9 or 18 km/h")
     if args.evaluations < 1:
         raise ValueError(f"--evaluations {args.evaluations}: allowed: an integer >= 1")
+    if args.start is not None and args.method != "machine":
+        raise ValueError(
+            f"--start {args.start} with --method {args.method}: allowed only with --method machine"
+        )
     if args.jobs < 1:
         raise ValueError(f"--jobs {args.jobs}: allowed: an integer >= 1")
     if args.no_check and args.output is not None and not args.force:
@@ -309,7 +341,8 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
             f"{'' if machine == 'skid_steer' else f' --machine {machine}'}"
             f"{'' if args.params is None else f' --params {args.params}'}"
             f"{f' --evaluations {args.evaluations}' if args.method == 'refine' else ''}"
-            f"{f' --iterations {args.iterations}' if args.method == 'machine' else ''} "
+            f"{f' --iterations {args.iterations}' if args.method == 'machine' else ''}"
+            f"{f' --start {args.start}' if args.method == 'machine' and args.start else ''} "
             f"on {datetime.date.today().isoformat()}{course_note}; {verdict}"
         )
         header = "Controller settings with designed skyhook gains (loader-model design)."

@@ -15,13 +15,19 @@ Envelope`), each relative to the baseline's a_total on the same road,
 with its gradient exact along each run: CasADi's sensitivities through the simulator's own
 period (:func:`~loader_model.simulation.gain_sensitivity.gain_gradient`), not finite
 differences. The search is a quasi-Newton (BFGS) descent with an Armijo backtracking line
-search, started from the linear comfort design. The check's criteria are constraints that no
+search, started from the linear comfort design (or gains of the user's), first moved to the
+nearest gains whose loop keeps the margin σ on every nominal and sampled plant
+(:mod:`~loader_model.experiments.stable_start`; with room, :data:`START_MARGIN_FACTOR` σ), and
+scaled toward zero by
+:data:`START_SHRINK` while its runs break a constraint below. The check's criteria are constraints that no
 accepted step may break (an exact penalty of infinite weight): a candidate is rejected, and the
 step shortened, when
 
-- the loop's margin on a load's linearised plant falls below σ
-  (:func:`~loader_model.control.comfort_design.evaluate_gain`), the loop is unstable on a plant
-  drawn from the robustness study's parameter distributions, or K leaves the settings' range;
+- the loop's margin on a load's linearised plant, or on a plant drawn from the robustness
+  study's parameter distributions, falls below σ
+  (:func:`~loader_model.control.comfort_design.evaluate_gain`; the check asks only for a stable
+  loop on the drawn plants, the margin keeps the design off that edge), or K leaves the
+  settings' range;
 - a scenario's run has a persistent oscillation after the road, or its pump command or
   displacement rate at their limits for longer than the envelope allows
   (:mod:`~loader_model.simulation.settling`);
@@ -46,9 +52,29 @@ from loader_model.experiments.design_check.runs import (
     condition_plant,
     condition_scenario,
 )
+from loader_model.experiments.stable_start import nearest_stable_gain
 
-__all__ = ["TRAINING_ENVELOPE", "MachineDesign", "design_on_machine"]
+__all__ = [
+    "START_MARGIN_FACTOR",
+    "START_SHRINK",
+    "START_SHRINKS",
+    "TRAINING_ENVELOPE",
+    "MachineDesign",
+    "design_on_machine",
+]
 
+#: Factor by which a start whose runs break a constraint (the pump at its limits, a persistent
+#: oscillation, a failed run) is scaled toward zero, and how often at most (to 0.7⁶ = 0.12 of
+#: it): the linear comfort design of the compact wheel loader rides the pump's limits on the
+#: empty bucket's boards at 18 km/h (command 8.2 %, rate 10.6 % of the run, measured).
+START_SHRINK = 0.7
+#: A start short of the margin σ on a plant is moved to the nearest gain that keeps this many
+#: times σ: a start on the constraint's edge leaves the descent no step that keeps it (measured
+#: on the skid-steer from the course-refined gains: moved to keep σ = 0.1 rad/s, every step of
+#: the first iteration was rejected; moved to keep 0.2 rad/s, three steps lowered J from 0.704
+#: to 0.670).
+START_MARGIN_FACTOR = 2.0
+START_SHRINKS = 6
 #: The scenarios the gains are optimised over by default: both loads, the paper's boards at 9
 #: and 18 km/h and an ISO 8608 class C road at 15 km/h.
 TRAINING_ENVELOPE = Envelope(
@@ -64,6 +90,11 @@ class MachineDesign:
     ----------
     gain : numpy.ndarray
         K_fb (1 × 4) on the shipped norms.
+    start_gain : numpy.ndarray
+        K_fb (1 × 4) the descent started from: the given start, or the nearest gain to it that
+        keeps the margin on every nominal and sampled plant when the given one does not
+        (:func:`~loader_model.experiments.stable_start.nearest_stable_gain`), scaled by
+        :data:`START_SHRINK` while its runs break a constraint.
     cost, start_cost : float
         J at the result and at the start (module notes).
     a_total, baseline : dict of str to float
@@ -77,6 +108,7 @@ class MachineDesign:
     """
 
     gain: np.ndarray
+    start_gain: np.ndarray
     cost: float
     start_cost: float
     a_total: dict[str, float]
@@ -158,8 +190,8 @@ class _Problem:
             return f"linearised loop margin {worst:.3f} rad/s below {self.margin:g}"
         if self.sampled:
             sampled = min(e.loop_margin for e in evaluate_gain(self.sampled, gain.reshape(1, 4)))
-            if sampled <= 0.0:
-                return f"loop unstable on a sampled plant (margin {sampled:.3f} rad/s)"
+            if sampled < self.margin:  # the check asks > 0: σ keeps the design off its edge
+                return f"loop margin {sampled:.3f} rad/s on a sampled plant, below {self.margin:g}"
         design = Design(settings, "skyhook", self.machine, self.params)
         factors = gain_norm_factors(settings)  # ∂a/∂K = c ∂a/∂k_settings (same control law)
         ratios, gradient, totals = [], np.zeros(4), []
@@ -194,6 +226,19 @@ class _Problem:
         return float(np.mean(np.square(ratios))), gradient / count, totals
 
 
+def _stable_start(given: np.ndarray, plants: list[Any], margin: float) -> np.ndarray:
+    """``given`` if its loop keeps ``margin`` on ``plants``; else the nearest gain that keeps
+    :data:`START_MARGIN_FACTOR` times it (or the margin itself where that is out of reach)."""
+    from loader_model.experiments.stable_start import loop_margin
+
+    if loop_margin(plants, given) >= margin:
+        return given
+    try:
+        return nearest_stable_gain(given, plants, START_MARGIN_FACTOR * margin).ravel()
+    except ValueError:
+        return nearest_stable_gain(given, plants, margin).ravel()
+
+
 def design_on_machine(
     start_gain: Any,
     *,
@@ -211,8 +256,10 @@ def design_on_machine(
     Parameters
     ----------
     start_gain : array_like
-        K_fb (4) to start from, e.g. the linear comfort design's; it must meet the constraints
-        other than the baseline comparison.
+        K_fb (4) to start from, e.g. the linear comfort design's or gains refined on a course;
+        moved first to the nearest gain whose loop keeps ``margin`` on each load's linearised
+        plant and on every sampled plant when it does not, then scaled toward zero while its
+        runs break the other constraints (persistence, pump limits).
     machine, params : str
         The machine and its parameter file (default the skid-steer's shipped values).
     envelope : Envelope
@@ -224,9 +271,9 @@ def design_on_machine(
     progress : bool
         Show a progress bar over the iterations.
     sampled_plants : int
-        Plants drawn from a robustness study on whose linearised plant the loop must stay
-        stable (:func:`~loader_model.experiments.design_check.margins.sampled_plants`), as the
-        design check demands.
+        Plants drawn from a robustness study on whose linearised plant the loop must keep
+        ``margin`` (:func:`~loader_model.experiments.design_check.margins.sampled_plants`; the
+        design check demands a stable loop on them).
     study : str, optional
         The study file they are drawn from (default: the shipped example for the skid-steer).
 
@@ -245,14 +292,23 @@ def design_on_machine(
         raise ValueError(f"max_iterations = {max_iterations!r}; allowed: an integer >= 1")
     start_wall = time.perf_counter()
     problem = _Problem(machine, params, envelope, float(margin), sampled_plants, study)
-    gain = np.asarray(start_gain, dtype=float).ravel()
-    if gain.size != 4 or not np.all(np.isfinite(gain)):
-        raise ValueError(f"start_gain = {gain.tolist()}; allowed: 4 finite gains")
+    given = np.asarray(start_gain, dtype=float).ravel()
+    if given.size != 4 or not np.all(np.isfinite(given)):
+        raise ValueError(f"start_gain = {given.tolist()}; allowed: 4 finite gains")
+    # a start unstable on a sampled plant (or short of σ on a nominal one) is moved to the
+    # nearest gain that keeps σ on all of them (module notes of stable_start)
+    gain = _stable_start(given, [*problem.plants, *problem.sampled], float(margin))
     first = problem.evaluate(gain)
+    for _ in range(START_SHRINKS):  # a smaller gain asks less of the pump (module notes)
+        if not isinstance(first, str):
+            break
+        gain = START_SHRINK * gain
+        first = problem.evaluate(gain)
     if isinstance(first, str):
         raise ValueError(
-            f"start_gain {gain.tolist()} breaks a constraint on machine {machine!r}: {first}; "
-            "start from a design that meets it"
+            f"start_gain {given.tolist()} breaks a constraint on machine {machine!r}, also "
+            f"scaled by {START_SHRINK:g} {START_SHRINKS} times: {first}; start from a design "
+            "that meets it"
         )
     cost, grad, totals = first
     start_cost = cost
@@ -308,6 +364,7 @@ def design_on_machine(
     labels = [c.label for c in problem.conditions]
     return MachineDesign(
         gain=(x * scale).reshape(1, 4),
+        start_gain=gain.reshape(1, 4),
         cost=cost,
         start_cost=start_cost,
         a_total=dict(zip(labels, totals, strict=True)),

@@ -99,3 +99,10 @@ def test_no_check_with_output_needs_force(tmp_path: Path, capsys) -> None:
     assert main(["design", "--no-check", "--output", str(target)]) == 2
     assert "--output with --no-check" in capsys.readouterr().err
     assert not target.exists()
+
+
+def test_start_is_for_the_machine_method_only(tmp_path: Path, capsys) -> None:
+    argv = ["design", "--method", "optimise", "--start", "default", "--no-check"]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert "--start default with --method optimise: allowed only with --method machine" in err
