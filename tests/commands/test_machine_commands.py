@@ -36,9 +36,7 @@ def test_hydraulics_of_the_wheel_loader(tmp_path, capsys) -> None:
     volume_a = piston * position + value("V_dead_A")
     volume_b = annulus * (value("stroke") - position) + value("V_dead_B")
     alpha = annulus / piston
-    expected = (
-        value("n_cyl") * value("K_oil") * piston**2 * (1 / volume_a + alpha**2 / volume_b)
-    )
+    expected = value("n_cyl") * value("K_oil") * piston**2 * (1 / volume_a + alpha**2 / volume_b)
     assert printed == pytest.approx(expected, rel=6e-4)
 
 
