@@ -3,7 +3,8 @@
 A description names the bodies (one chassis free in the plane, others on a pin to a parent body at
 a named point of it, or on a sliding mount with a spring-damper), the named points of each body,
 the axles with tyres, the actuators (the driven lift cylinder group and hydraulically locked
-cylinders), the sensor points and every parameter with its unit, description, range and source.
+cylinders), the sensor points and every parameter with its unit, description, range and source
+(the static loads computed at rest may be left out: :func:`static_load_parameters` lists them).
 The format is drawn in ``derive/machine.schema.json``; :func:`load_machine` checks it and raises a
 :class:`DescriptionError` naming the offending entry.
 

@@ -57,7 +57,7 @@ KEYS: dict[str, frozenset[str]] = {
     "sensor": frozenset({"axes", "label"}),
     "parameter": frozenset({"unit", "description", "range", "source"}),
 }
-#: The keys of :data:`KEYS` that each table must have (machine/derive/machine.schema.json).
+#: The keys of :data:`KEYS` that each table must have (as derive/machine.schema.json).
 REQUIRED: dict[str, frozenset[str]] = {
     "": frozenset({"machine", "bodies", "axles", "actuators", "parameters"}),
     "machine": frozenset({"name", "title"}),
@@ -101,7 +101,9 @@ def unknown_key(key: str, missing: Iterable[str], allowed: Iterable[str]) -> str
     ``missing`` keys (else of the ``allowed``), the keys still missing and those allowed."""
     missing, allowed = sorted(missing), sorted(allowed)
     guess = closest(key, missing) or closest(key, allowed)
-    text = f"unknown key {key!r}" + (f" (did you mean {guess!r}?)" if guess else "")
+    text = f"unknown key {shown(key)}"
+    if guess:
+        text += f" (did you mean {guess!r}?)"
     if missing:
         text += f"; missing: {', '.join(missing)}"
     return text + f"; allowed: {', '.join(allowed)}"
