@@ -61,3 +61,27 @@ def test_the_derive_extra_is_installed_into_this_environment() -> None:
     command = shlex.split(derive_extra_command())
     assert command[1:4] == ["-m", "pip", "install"]
     assert command[-2:] == ["-e", f"{ROOT}[derive]"]
+
+
+def test_a_missing_package_names_the_extra_only_where_sympy_is_missing(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from loader_model import machine_packages
+
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "cache"))
+    description = tmp_path / "carrier.toml"
+    description.write_text('[machine]\nname = "carrier"\n', encoding="utf-8")
+    with pytest.raises(ValueError, match="has no generated package") as with_sympy:
+        machine_packages.register_external(description, "carrier")
+    assert str(with_sympy.value).endswith(f"derive it with `{derive_command(description)}`")
+    real = machine_packages.importlib.util.find_spec
+    monkeypatch.setattr(
+        machine_packages.importlib.util,
+        "find_spec",
+        lambda name, *args: None if name == "sympy" else real(name, *args),
+    )
+    with pytest.raises(ValueError) as without:
+        machine_packages.register_external(description, "carrier")
+    assert str(without.value).endswith(
+        f"`{derive_command(description)}` (needs the derive extra: `{derive_extra_command()}`)"
+    )
