@@ -19,14 +19,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from derive.description_checks import (
-    KEYS,
-    DescriptionError,
-    check_entries,
-    closest,
-    read_description,
-    shown,
-)
+from derive.description_checks import DescriptionError, check_entries, read_description, shown
+from derive.description_keys import KEYS, closest, parameter_names_problem
 
 __all__ = [
     "MACHINES_DIR",
@@ -260,41 +254,6 @@ def _point_parameter(machine_root: str, body: Body, point: str, axis: str, where
     return f"{axis} of {body.points[point]} ({place}, relative to {machine_root})"
 
 
-def _parameter_names_error(
-    where: str, declared: dict[str, Any], machine: Machine, loads: dict[str, str]
-) -> None:
-    """Refuse an unknown parameter name (a misspelt one: named, with the closest missing name)
-    and list every missing one with its unit, the static loads named as optional."""
-    structure = structural_parameters(machine)
-    points = {name for name, _ in structure if _is_point_parameter(machine, name)}
-    missing = [
-        f"{name} [{unit}]"
-        for name, unit in structure
-        if name not in declared and name not in points and name not in loads
-    ]
-    names = [name for name, _ in structure if name not in points]
-    computed = f"the static loads {', '.join(loads)} may be left out (computed at rest)"
-    for name in declared:
-        if name not in names and name not in points:
-            left = [n for n, _ in structure if n not in declared and n not in points]
-            guess = closest(name, left) or closest(name, names)
-            text = f"unknown parameter {name!r}" + (f" (did you mean {guess!r}?)" if guess else "")
-            if missing:
-                text += f"; missing: {', '.join(missing)}"
-            text += (
-                f"; allowed: {', '.join(names)}, and <point>_x, <point>_y of each point "
-                f"(described by its body); {computed}"
-            )
-            raise DescriptionError(where, "parameters", text)
-    if missing:
-        raise DescriptionError(
-            where,
-            "parameters",
-            f"missing {', '.join(missing)}: give each as {{ unit, description, range, source }}; "
-            f"{computed}",
-        )
-
-
 def _is_point_parameter(machine: Machine, name: str) -> bool:
     return name[-2:] in ("_x", "_y") and any(name[:-2] in body.points for body in machine.bodies)
 
@@ -304,7 +263,11 @@ def _parameters(where: str, raw: dict[str, Any], machine: Machine) -> tuple[Para
         raise DescriptionError(where, "parameters", "expected a table")
     table = raw
     loads = static_load_parameters(machine)
-    _parameter_names_error(where, table, machine, loads)
+    structure = structural_parameters(machine)
+    points = {name for name, _ in structure if _is_point_parameter(machine, name)}
+    problem = parameter_names_problem(table, structure, points, loads)
+    if problem is not None:
+        raise DescriptionError(where, "parameters", problem)
     out: list[ParameterInfo] = []
     reference = machine.root.centre_of_gravity
     for name, unit in structural_parameters(machine):

@@ -6,74 +6,27 @@ type or value: names that are not Python identifiers (a body, point, coordinate,
 machine itself), numbers that are not finite, ranges that are reversed, ``coordinates`` given as a
 string, a coordinate or parameter name used twice, a sensor axis other than ``x`` and ``y``. A key
 that a table does not take (a misspelt one) is named before anything is read from the table, with
-the closest allowed key, the keys still missing and the keys allowed (:data:`KEYS`,
-:data:`REQUIRED`). Each raises :class:`~derive.description.DescriptionError` naming the entry, the
-value and what is allowed, so that nothing is derived from a description that cannot be built.
-Standard library only.
+the closest allowed key, the keys still missing and the keys allowed
+(:mod:`derive.description_keys`). Each raises :class:`~derive.description.DescriptionError`
+naming the entry, the value and what is allowed, so that nothing is derived from a description
+that cannot be built. Standard library only.
 """
 
 from __future__ import annotations
 
-import difflib
 import math
 import tomllib
-from collections.abc import Iterable
 from pathlib import Path
 from typing import Any
 
-__all__ = [
-    "KEYS",
-    "MAX_BYTES",
-    "REQUIRED",
-    "DescriptionError",
-    "check_entries",
-    "closest",
-    "read_description",
-    "shown",
-    "unknown_key",
-]
+from derive.description_keys import JOINTS, KEYS, REQUIRED, unknown_key
+
+__all__ = ["MAX_BYTES", "DescriptionError", "check_entries", "read_description", "shown"]
 
 #: Largest description file read (the shipped ones are 6-8 kB).
 MAX_BYTES = 1_000_000
 _AXES = ("x", "y")
 _KINDS = ("driven", "locked")
-_JOINTS = ("free", "pin", "slider")
-#: The keys each table of a description takes: the top level, [machine], a body by its joint,
-#: an axle, an actuator, a sensor and a parameter.
-KEYS: dict[str, frozenset[str]] = {
-    "": frozenset({"machine", "bodies", "axles", "actuators", "sensors", "parameters"}),
-    "machine": frozenset({"name", "title", "point_range"}),
-    "free": frozenset({"joint", "label", "reference", "coordinates", "mass", "inertia", "points"}),
-    "pin": frozenset(
-        {"joint", "label", "parent", "at", "coordinate", "joint_angle", "mass", "inertia"}
-        | {"centre_of_gravity", "points"}
-    ),
-    "slider": frozenset(
-        {"joint", "label", "parent", "at", "direction", "coordinate", "mass", "inertia"}
-        | {"centre_of_gravity", "points"}
-    ),
-    "axle": frozenset({"point", "label"}),
-    "actuator": frozenset({"kind", "base", "rod"}),
-    "sensor": frozenset({"axes", "label"}),
-    "parameter": frozenset({"unit", "description", "range", "source"}),
-}
-#: The keys of :data:`KEYS` that each table must have (as derive/machine.schema.json).
-REQUIRED: dict[str, frozenset[str]] = {
-    "": frozenset({"machine", "bodies", "axles", "actuators", "parameters"}),
-    "machine": frozenset({"name", "title"}),
-    "free": frozenset({"joint", "reference", "coordinates", "mass", "inertia", "points"}),
-    "pin": frozenset(
-        {"joint", "parent", "at", "coordinate", "mass", "inertia", "centre_of_gravity", "points"}
-    ),
-    "slider": frozenset(
-        {"joint", "parent", "at", "direction", "coordinate", "mass", "inertia"}
-        | {"centre_of_gravity", "points"}
-    ),
-    "axle": frozenset({"point"}),
-    "actuator": frozenset({"kind", "base", "rod"}),
-    "sensor": frozenset({"axes"}),
-    "parameter": frozenset({"unit", "description"}),
-}
 
 
 class DescriptionError(ValueError):
@@ -88,25 +41,6 @@ def shown(value: Any, limit: int = 60) -> str:
     """``repr(value)`` cut to ``limit`` characters, for error messages."""
     text = repr(value)
     return text if len(text) <= limit else text[: limit - 3] + "..."
-
-
-def closest(word: str, choices: Iterable[str]) -> str | None:
-    """The choice nearest to ``word`` in spelling (a misspelt key's intended one), or None."""
-    found = difflib.get_close_matches(word, sorted(choices), n=1, cutoff=0.6)
-    return found[0] if found else None
-
-
-def unknown_key(key: str, missing: Iterable[str], allowed: Iterable[str]) -> str:
-    """The message for a key ``key`` a table does not take: the key found, the closest of the
-    ``missing`` keys (else of the ``allowed``), the keys still missing and those allowed."""
-    missing, allowed = sorted(missing), sorted(allowed)
-    guess = closest(key, missing) or closest(key, allowed)
-    text = f"unknown key {shown(key)}"
-    if guess:
-        text += f" (did you mean {guess!r}?)"
-    if missing:
-        text += f"; missing: {', '.join(missing)}"
-    return text + f"; allowed: {', '.join(allowed)}"
 
 
 def read_description(path: Path) -> dict[str, Any]:
@@ -170,10 +104,10 @@ class _Checker:
         if not isinstance(table, dict):
             return
         joint = table.get("joint")
-        if joint in _JOINTS:
+        if joint in JOINTS:
             self.keys(entry, table, joint)
             return
-        allowed = frozenset().union(*(KEYS[kind] for kind in _JOINTS))
+        allowed = frozenset().union(*(KEYS[kind] for kind in JOINTS))
         for key in table:
             if key not in allowed:
                 missing = {"joint"} - table.keys()
