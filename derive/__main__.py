@@ -1,5 +1,7 @@
 """``python -m derive [DESCRIPTION.toml] [--output DIR] [--machine NAME]``: derive machines.
 
+The same command is installed as ``loader-model-derive``; either runs from any folder.
+
 Without a description file: the machines of ``derive/machines``. The default machine (the
 skid-steer) is written into the output folder itself (the package ``loader_model_generated``),
 every other machine into ``<output>/<name>/`` (``loader_model_generated.<name>``). Without
@@ -29,6 +31,8 @@ from derive.description_checks import MAX_BYTES
 from derive.install import OutputError
 from loader_model import machine_packages
 
+#: The console script of the derivation (pyproject.toml), the same as ``python -m derive``.
+SCRIPT = "loader-model-derive"
 #: The errors of a derivation that are the user's to fix (printed as one line, exit code 2).
 _USER_ERRORS = (DescriptionError, OutputError, OSError, ValueError, RuntimeError)
 
@@ -72,16 +76,29 @@ def _derive_file(description: Path, output: Path | None) -> int:
     return 0
 
 
+def _prog() -> str:
+    """The command's name as the user called it: ``loader-model-derive`` (the console script)
+    or ``python -m derive``."""
+    called = Path(sys.argv[0]).name if sys.argv else ""
+    return SCRIPT if called == SCRIPT else "python -m derive"
+
+
 def main(argv: list[str] | None = None) -> int:
     # the module notes as plain-text help, without reST markup
-    parser = argparse.ArgumentParser(prog="python -m derive", description=__doc__.replace("``", ""))
+    parser = argparse.ArgumentParser(prog=_prog(), description=__doc__.replace("``", ""))
     parser.add_argument(
         "description",
         nargs="?",
         type=Path,
         help="a machine description file outside derive/machines (default: derive/machines)",
     )
-    parser.add_argument("--output", type=Path, default=None, help="output folder")
+    parser.add_argument(
+        "--output",
+        type=Path,
+        default=None,
+        help="output folder (default: generated/ in the working folder for the described "
+        "machines, the runtime's cache for a description file)",
+    )
     parser.add_argument(
         "--machine",
         choices=available_machines(),
@@ -97,7 +114,8 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     if importlib.util.find_spec("sympy") is None:
         print(
-            "python -m derive: needs SymPy; install the derive extra: pip install -e '.[derive]'",
+            "python -m derive: needs SymPy; install the derive extra: "
+            f"{machine_packages.derive_extra_command()}",
             file=sys.stderr,
         )
         return 2

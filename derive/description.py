@@ -3,7 +3,8 @@
 A description names the bodies (one chassis free in the plane, others on a pin to a parent body at
 a named point of it, or on a sliding mount with a spring-damper), the named points of each body,
 the axles with tyres, the actuators (the driven lift cylinder group and hydraulically locked
-cylinders), the sensor points and every parameter with its unit, description, range and source.
+cylinders), the sensor points and every parameter with its unit, description, range and source
+(the static loads computed at rest may be left out: :func:`static_load_parameters` lists them).
 The format is drawn in ``derive/machine.schema.json``; :func:`load_machine` checks it and raises a
 :class:`DescriptionError` naming the offending entry.
 
@@ -19,6 +20,7 @@ from pathlib import Path
 from typing import Any
 
 from derive.description_checks import DescriptionError, check_entries, read_description, shown
+from derive.description_keys import KEYS, closest, parameter_names_problem
 
 __all__ = [
     "MACHINES_DIR",
@@ -30,24 +32,15 @@ __all__ = [
     "available_machines",
     "check_values",
     "load_machine",
+    "static_load_parameters",
     "structural_parameters",
 ]
 
 MACHINES_DIR = Path(__file__).resolve().parent / "machines"
 _JOINTS = ("free", "pin", "slider")
-_KEYS = {
-    "": {"machine", "bodies", "axles", "actuators", "sensors", "parameters"},
-    "machine": {"name", "title", "point_range"},
-    "free": {"joint", "label", "reference", "coordinates", "mass", "inertia", "points"},
-    "pin": {"joint", "label", "parent", "at", "coordinate", "joint_angle", "mass", "inertia"}
-    | {"centre_of_gravity", "points"},
-    "slider": {"joint", "label", "parent", "at", "direction", "coordinate", "mass", "inertia"}
-    | {"centre_of_gravity", "points"},
-    "axle": {"point", "label"},
-    "actuator": {"kind", "base", "rod"},
-    "sensor": {"axes", "label"},
-    "parameter": {"unit", "description", "range", "source"},
-}
+_KEYS = KEYS
+#: Source of a static load the description leaves out (:func:`static_load_parameters`).
+STATIC_LOAD_SOURCE = "computed by complete_parameters (static equilibrium)"
 
 
 @dataclass(frozen=True)
@@ -233,8 +226,26 @@ def structural_parameters(machine: Machine) -> list[tuple[str, str]]:
     out += [("mu_road", "-"), ("F_transition", "N"), ("tau_slip", "s")]
     for element in machine.elements:
         out += [(f"k_{element}", "N/m"), (f"c_{element}", "N*s/m")]
-    out += [(f"F_{axle}y0", "N") for axle in machine.axles]
-    out += [(f"F_{element}0", "N") for element in machine.elements]
+    out += [(name, "N") for name in static_load_parameters(machine)]
+    return out
+
+
+def static_load_parameters(machine: Machine) -> dict[str, str]:
+    """The static loads the derivation computes at rest, name -> description, in the order of
+    the parameter vector: the vertical tyre load of each axle (``F_<axle>y0``), then the force of
+    each internal spring-damper (``F_<element>0``: locked cylinders, then sliding mounts).
+
+    The generated ``complete_parameters`` replaces whatever value is given for them, so a
+    description may leave them out of ``[parameters]`` (they are then described as here).
+    """
+    out = {
+        f"F_{axle}y0": f"static vertical tyre load at {axle} (from the static equilibrium)"
+        for axle in machine.axles
+    }
+    locked = {item.name for item in machine.actuators if item.kind == "locked"}
+    for element in machine.elements:
+        kind = f"locked {element} cylinder" if element in locked else f"{element} sliding mount"
+        out[f"F_{element}0"] = f"static force of the {kind} (from the static equilibrium)"
     return out
 
 
@@ -243,8 +254,20 @@ def _point_parameter(machine_root: str, body: Body, point: str, axis: str, where
     return f"{axis} of {body.points[point]} ({place}, relative to {machine_root})"
 
 
+def _is_point_parameter(machine: Machine, name: str) -> bool:
+    return name[-2:] in ("_x", "_y") and any(name[:-2] in body.points for body in machine.bodies)
+
+
 def _parameters(where: str, raw: dict[str, Any], machine: Machine) -> tuple[ParameterInfo, ...]:
-    table = _table(where, "parameters", raw, {name for name, _ in structural_parameters(machine)})
+    if not isinstance(raw, dict):
+        raise DescriptionError(where, "parameters", "expected a table")
+    table = raw
+    loads = static_load_parameters(machine)
+    structure = structural_parameters(machine)
+    points = {name for name, _ in structure if _is_point_parameter(machine, name)}
+    problem = parameter_names_problem(table, structure, points, loads)
+    if problem is not None:
+        raise DescriptionError(where, "parameters", problem)
     out: list[ParameterInfo] = []
     reference = machine.root.centre_of_gravity
     for name, unit in structural_parameters(machine):
@@ -252,6 +275,9 @@ def _parameters(where: str, raw: dict[str, Any], machine: Machine) -> tuple[Para
         if body is not None and name[-2:] in ("_x", "_y"):
             text = _point_parameter(reference, body, name[:-2], name[-1], where)
             out.append(ParameterInfo(name, unit, text, machine.point_range))
+            continue
+        if name in loads and name not in table:
+            out.append(ParameterInfo(name, unit, loads[name], None, STATIC_LOAD_SOURCE))
             continue
         entry = f"parameters.{name}"
         item = _table(where, entry, _need(where, "parameters", table, name), _KEYS["parameter"])
@@ -358,17 +384,27 @@ def available_machines() -> tuple[str, ...]:
 def check_values(machine: Machine, values: dict[str, dict[str, Any]]) -> None:
     """Check a flat parameter set ``{name: {value, unit, source}}`` against ``machine``.
 
+    The static loads (:func:`static_load_parameters`) may be left out.
+
     Raises
     ------
     DescriptionError
-        For a missing or unknown name, a wrong unit, a value outside the range, no source.
+        For a missing or unknown name (a misspelt one: with the closest name and those still
+        missing), a wrong unit, a value outside the range, no source.
     """
     where = f"values for {machine.name}"
     known = {item.name: item for item in machine.parameters}
+    loads = static_load_parameters(machine)
     for name in values:
         if name not in known:
-            raise DescriptionError(where, name, "not a parameter of the machine")
+            left = [n for n in known if n not in values and n not in loads]
+            guess = closest(name, left) or closest(name, known)
+            hint = f" (did you mean {guess!r}?)" if guess else ""
+            missing = f"; missing: {', '.join(left)}" if left else ""
+            raise DescriptionError(where, name, f"not a parameter of the machine{hint}{missing}")
     for name, item in known.items():
+        if name not in values and name in loads:
+            continue  # computed at rest: the value given is not used
         if name not in values:
             raise DescriptionError(where, name, "missing")
         entry = values[name]

@@ -4,9 +4,12 @@
 too large, nested too deeply, a duplicate key) and :func:`check_entries` every entry of the wrong
 type or value: names that are not Python identifiers (a body, point, coordinate, parameter or the
 machine itself), numbers that are not finite, ranges that are reversed, ``coordinates`` given as a
-string, a coordinate or parameter name used twice, a sensor axis other than ``x`` and ``y``. Each
-raises :class:`~derive.description.DescriptionError` naming the entry, the value and what is
-allowed, so that nothing is derived from a description that cannot be built. Standard library only.
+string, a coordinate or parameter name used twice, a sensor axis other than ``x`` and ``y``. A key
+that a table does not take (a misspelt one) is named before anything is read from the table, with
+the closest allowed key, the keys still missing and the keys allowed
+(:mod:`derive.description_keys`). Each raises :class:`~derive.description.DescriptionError`
+naming the entry, the value and what is allowed, so that nothing is derived from a description
+that cannot be built. Standard library only.
 """
 
 from __future__ import annotations
@@ -15,6 +18,8 @@ import math
 import tomllib
 from pathlib import Path
 from typing import Any
+
+from derive.description_keys import JOINTS, KEYS, REQUIRED, unknown_key
 
 __all__ = ["MAX_BYTES", "DescriptionError", "check_entries", "read_description", "shown"]
 
@@ -82,6 +87,32 @@ class _Checker:
     def fail(self, entry: str, value: Any, allowed: str) -> None:
         raise DescriptionError(self.where, entry, f"{shown(value)} is not allowed; {allowed}")
 
+    def keys(self, entry: str, table: Any, kind: str) -> None:
+        """Refuse a key of ``table`` that a table of ``kind`` (:data:`KEYS`) does not take."""
+        if not isinstance(table, dict):
+            return  # the table check names it
+        allowed, required = KEYS[kind], REQUIRED[kind]
+        for key in table:
+            if key not in allowed:
+                missing = required - table.keys()
+                raise DescriptionError(
+                    self.where, entry or "(top level)", unknown_key(key, missing, allowed)
+                )
+
+    def body_keys(self, entry: str, table: Any) -> None:
+        """:meth:`keys` of a body: those of its joint, or any body's while the joint is unknown."""
+        if not isinstance(table, dict):
+            return
+        joint = table.get("joint")
+        if joint in JOINTS:
+            self.keys(entry, table, joint)
+            return
+        allowed = frozenset().union(*(KEYS[kind] for kind in JOINTS))
+        for key in table:
+            if key not in allowed:
+                missing = {"joint"} - table.keys()
+                raise DescriptionError(self.where, entry, unknown_key(key, missing, allowed))
+
     def name(self, entry: str, value: Any) -> str:
         if not (isinstance(value, str) and value.isascii() and value.isidentifier()):
             self.fail(
@@ -115,6 +146,7 @@ class _Checker:
 
 def _check_body(check: _Checker, name: str, raw: Any, names: dict[str, str]) -> None:
     entry = f"bodies.{name}"
+    check.body_keys(entry, raw)
     body = check.table(entry, raw)
     for key in ("parent", "at", "reference", "mass", "inertia", "centre_of_gravity"):
         if key in body:
@@ -156,7 +188,9 @@ def check_entries(where: str, raw: dict[str, Any]) -> None:
         Naming the first bad entry, its value and what is allowed.
     """
     check = _Checker(where)
+    check.keys("", raw, "")
     head = raw.get("machine")
+    check.keys("machine", head, "machine")
     if isinstance(head, dict):
         if "name" in head:
             check.name("machine.name", head["name"])
@@ -171,17 +205,20 @@ def check_entries(where: str, raw: dict[str, Any]) -> None:
     if not isinstance(axles, list):
         check.fail("axles", axles, "give [[axles]] tables, one per axle")
     for index, axle in enumerate(axles):
+        check.keys(f"axles[{index}]", axle, "axle")
         item = check.table(f"axles[{index}]", axle)
         check.name(f"axles[{index}].point", item.get("point"))
         if "label" in item:
             check.text(f"axles[{index}].label", item["label"])
     for name, item in check.table("actuators", raw.get("actuators", {})).items():
+        check.keys(f"actuators.{name}", item, "actuator")
         item = check.table(f"actuators.{name}", item)
         if item.get("kind") not in _KINDS:
             check.fail(f"actuators.{name}.kind", item.get("kind"), f"allowed: {', '.join(_KINDS)}")
         for key in ("base", "rod"):
             check.name(f"actuators.{name}.{key}", item.get(key))
     for point, item in check.table("sensors", raw.get("sensors", {})).items():
+        check.keys(f"sensors.{point}", item, "sensor")
         item = check.table(f"sensors.{point}", item)
         axes = item.get("axes")
         if not (
@@ -194,6 +231,7 @@ def check_entries(where: str, raw: dict[str, Any]) -> None:
         if "label" in item:
             check.text(f"sensors.{point}.label", item["label"])
     for name, item in check.table("parameters", raw.get("parameters", {})).items():
+        check.keys(f"parameters.{name}", item, "parameter")
         item = check.table(f"parameters.{name}", item)
         for key in ("unit", "description", "source"):
             if key in item:

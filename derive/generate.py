@@ -263,9 +263,11 @@ def generate(
     import sympy
 
     if sympy.__version__ != SYMPY_VERSION:
+        from loader_model.machine_packages import derive_extra_command
+
         raise RuntimeError(
             f"generated/ is owned by sympy=={SYMPY_VERSION}, found {sympy.__version__}; "
-            "install the derive extra (pip install -e '.[derive]')"
+            f"install the derive extra ({derive_extra_command()})"
         )
     output_dir = Path(output_dir)
     shared = machine == DEFAULT_MACHINE

@@ -21,6 +21,8 @@ import hashlib
 import importlib.util
 import json
 import os
+import shlex
+import shutil
 import stat
 import sys
 from pathlib import Path
@@ -28,6 +30,8 @@ from pathlib import Path
 __all__ = [
     "MANIFEST",
     "cache_root",
+    "derive_command",
+    "derive_extra_command",
     "description_hash",
     "external",
     "external_source",
@@ -179,8 +183,53 @@ def verify(folder: Path, description: bytes) -> None:
             raise ValueError(f"{entry}: not in the manifest (added after derive wrote the folder)")
 
 
-def _derive_command(path: Path) -> str:
-    return f"python -m derive {path}"
+def _on_path(name: str) -> bool:
+    """Whether ``name`` on the user's ``PATH`` is the file of that name beside this interpreter
+    (the same environment: an activated one, or its scripts folder on the ``PATH``)."""
+    found = shutil.which(name)
+    beside = Path(sys.executable).absolute().with_name(name)
+    return found is not None and Path(found).absolute() == beside
+
+
+def _python() -> str:
+    """How to call this interpreter from the user's shell: ``python`` when that is it on the
+    ``PATH`` (an activated environment), else its full path."""
+    return "python" if _on_path("python") else shlex.quote(str(Path(sys.executable).absolute()))
+
+
+def derive_command(path: str | os.PathLike[str]) -> str:
+    """The command that derives the description ``path`` where the user is.
+
+    ``python -m derive path`` when ``python`` on the ``PATH`` is this interpreter (an activated
+    environment), else ``loader-model-derive path`` when that console script of this environment
+    is on the ``PATH``, else this interpreter's full path with ``-m derive``; ``path`` as the
+    user gave it (relative to the working folder), quoted for a POSIX shell where it needs it.
+    """
+    quoted = shlex.quote(str(path))
+    if not _on_path("python") and _on_path("loader-model-derive"):
+        return f"loader-model-derive {quoted}"
+    return f"{_python()} -m derive {quoted}"
+
+
+def derive_extra_command() -> str:
+    """The command that installs the derive extra (SymPy) into this interpreter's environment:
+    from the source folder of an editable install (a clone), else from the package index."""
+    import loader_model
+
+    root = Path(loader_model.__file__).resolve().parents[1]
+    source = root / "pyproject.toml"
+    if source.is_file() and 'name = "loader-model"' in source.read_text(encoding="utf-8"):
+        target = "-e " + shlex.quote(f"{root}[derive]")
+    else:
+        target = shlex.quote("loader-model[derive]")
+    return f"{_python()} -m pip install {target}"
+
+
+def _extra_note() -> str:
+    """Where SymPy is missing: how to install the derive extra, else nothing."""
+    if importlib.util.find_spec("sympy") is not None:
+        return ""
+    return f" (needs the derive extra: `{derive_extra_command()}`)"
 
 
 def _import(path: Path, name: str, folder: Path, digest: str) -> str:
@@ -199,7 +248,7 @@ def _import(path: Path, name: str, folder: Path, digest: str) -> str:
         del sys.modules[module_name]
         raise ValueError(
             f"{path}: the generated package {folder}/ does not import "
-            f"({type(error).__name__}: {error}); derive it again with `{_derive_command(path)}`"
+            f"({type(error).__name__}: {error}); derive it again with `{derive_command(path)}`"
         ) from None
     return module_name
 
@@ -222,8 +271,7 @@ def register_external(path: Path, name: str) -> str:
     if not folder.exists() and not folder.is_symlink():
         raise ValueError(
             f"{path}: machine {name!r} has no generated package for this version of the file "
-            f"(none in {folder}/); derive it with `{_derive_command(path)}` (needs the derive "
-            "extra: pip install -e '.[derive]')"
+            f"(none in {folder}/); derive it with `{derive_command(path)}`{_extra_note()}"
         )
     known = _EXTERNAL.get(name)
     if known is not None:
@@ -243,7 +291,7 @@ def register_external(path: Path, name: str) -> str:
     except ValueError as error:
         raise ValueError(
             f"{path}: the generated package is refused: {error}; derive it again with "
-            f"`{_derive_command(path)}`"
+            f"`{derive_command(path)}`"
         ) from None
     module_name = _import(path, name, folder, wanted)
     _EXTERNAL[name] = (path.resolve(), module_name, wanted, folder)

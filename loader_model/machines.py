@@ -46,6 +46,7 @@ from typing import Any
 
 from loader_model.io.files import read_text
 from loader_model.machine_packages import (
+    derive_command,
     description_hash,
     external,
     external_source,
@@ -344,7 +345,7 @@ def _machine(name: str) -> MachineInfo:
         path, package = found
     else:
         path, package = _shipped_description(name), _package_name(name)
-    repair = "make regenerate" if found is None else f"python -m derive {external_source(name)}"
+    repair = "make regenerate" if found is None else derive_command(external_source(name))
     try:
         raw = tomllib.loads(path.read_text(encoding="utf-8"))
         gen = importlib.import_module(package)

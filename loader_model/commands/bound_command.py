@@ -21,7 +21,12 @@ from __future__ import annotations
 
 import argparse
 
-from loader_model.commands.common import add_model_arguments, add_progress_argument
+from loader_model.commands.common import (
+    add_machine_argument,
+    add_model_arguments,
+    add_progress_argument,
+    require_skid_steer,
+)
 
 __all__ = ["CONTROLLERS", "GUIDE", "HELP", "add_arguments", "run"]
 
@@ -42,6 +47,7 @@ CONTROLLERS = (
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Register the arguments of ``loader-model bound``."""
+    add_machine_argument(parser, note=" (the skid-steer only: its plant is the bound's)")
     add_model_arguments(parser)
     parser.add_argument("--course", default="paper", metavar="COURSE", help="'paper'")
     parser.add_argument(
@@ -119,6 +125,11 @@ def run(args: argparse.Namespace) -> int:
 def _run(args: argparse.Namespace, written: list[str]) -> int:
     from pathlib import Path
 
+    require_skid_steer(
+        args,
+        "the bound and the pump sizing are built on the skid-steer's plant; hydraulics, "
+        "modes, model, simulate and export-fmu take any machine",
+    )
     if args.course != "paper":
         raise ValueError(f"--course {args.course!r}: allowed: paper")
     if args.speed not in (9.0, 18.0):

@@ -10,13 +10,18 @@ from __future__ import annotations
 
 import argparse
 
-from loader_model.commands.common import add_model_arguments
+from loader_model.commands.common import (
+    add_machine_argument,
+    add_model_arguments,
+    require_skid_steer,
+)
 
 HELP = "fit the least-known parameters to the paper's Table 1 and write a parameter file"
 GUIDE = "parameters.md"  # its page of the user guide (docs/guide/)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_machine_argument(parser, note=" (the skid-steer only: Table 1 was measured on it)")
     add_model_arguments(parser)
     parser.add_argument("--output", metavar="FILE", help="write the calibrated parameters (TOML)")
 
@@ -30,6 +35,11 @@ def run(args: argparse.Namespace) -> int:
     from loader_model.parameters.sets import PARAMETER_SUFFIXES, save
     from loader_model.vehicle.statics import resolve_machine
 
+    require_skid_steer(
+        args,
+        "the fit targets the paper's Table 1, measured on the skid-steer; "
+        "`loader-model modes --machine NAME` gives any machine's modes",
+    )
     if args.output is not None:  # refuse a bad output path before the long fit
         check_output_path(args.output, PARAMETER_SUFFIXES, "--output")
     loader, load = resolve_machine(args.params, args.load)

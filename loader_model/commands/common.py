@@ -15,6 +15,7 @@ __all__ = [
     "add_progress_argument",
     "machine_from_arguments",
     "model_from_arguments",
+    "require_skid_steer",
 ]
 
 
@@ -91,3 +92,17 @@ def model_from_arguments(args: argparse.Namespace) -> Any:
 
     info = machine_from_arguments(args)
     return LoaderDynamics.from_parameters(args.params, args.load, machine=info.name)
+
+
+def require_skid_steer(args: argparse.Namespace, reason: str) -> None:
+    """Refuse ``--machine`` other than the skid-steer for a command built on it alone.
+
+    Raises
+    ------
+    ValueError
+        Naming ``--machine``, the value given, what is allowed and ``reason`` (the command
+        line's one-line error, exit code 2); an unknown machine as
+        :func:`machine_from_arguments` does.
+    """
+    if not machine_from_arguments(args).is_default:
+        raise ValueError(f"--machine {args.machine!r}: allowed: skid_steer ({reason})")

@@ -1,19 +1,22 @@
 """Static pressures, hydraulic stiffness, modes of the coupled plant and the pressure loop of
-section 3.2 beside Eq. 43; writes a Bode overlay (PNG)."""
+section 3.2 beside Eq. 43; writes a Bode overlay (PNG). Any described machine (``--machine``):
+for another machine than the skid-steer, its pump, valves, friction and accumulator are the
+estimates of :mod:`loader_model.plant.machine_parameters`, and Eq. 43 (the paper's skid-steer)
+is printed as a reference only."""
 
 from __future__ import annotations
 
 import argparse
 
-from loader_model.commands.common import add_model_arguments
+from loader_model.commands.common import add_model_arguments, machine_from_arguments
 
 HELP = "hydraulic plant: static pressures, k_eq, coupled modes, pressure loop vs Eq. 43"
 GUIDE = "hydraulics.md"  # its page of the user guide (docs/guide/)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add ``--params``, ``--load``, ``--highpass`` and ``--plot``."""
-    add_model_arguments(parser)
+    """Add ``--machine``, ``--params``, ``--load``, ``--highpass`` and ``--plot``."""
+    add_model_arguments(parser, machine=True)
     parser.add_argument(
         "--highpass",
         type=float,
@@ -37,18 +40,29 @@ def run(args: argparse.Namespace) -> int:
     check_output_path(args.plot, (".png",), "plot file")  # before any work
     if not args.highpass > 0:
         raise ValueError(f"--highpass {args.highpass!r}: allowed: a number > 0 (rad/s)")
-    report = hydraulics_report(args.params, args.load, highpass_rad_s=args.highpass)
+    info = machine_from_arguments(args)
+    report = hydraulics_report(
+        args.params, args.load, highpass_rad_s=args.highpass, machine=info.name
+    )
     static = report.static_outputs
-    print(f"Hydraulic plant, bucket load {args.load}")
+    name = "" if info.is_default else f"{info.title}: "
+    print(f"{name}Hydraulic plant, bucket load {args.load}")
     print(f"  static piston pressure p_A   {static['p_A'] / 1e5:10.2f} bar (gauge)")
     print(f"  static rod pressure p_B      {static['p_B'] / 1e5:10.2f} bar (charge line)")
-    print(f"  static cylinder force        {static['F_act'] / 1e3:10.2f} kN (both cylinders)")
+    count = report.cylinder_count
+    group = {1: "one cylinder", 2: "both cylinders"}.get(count, f"all {count} cylinders")
+    print(f"  static cylinder force        {static['F_act'] / 1e3:10.2f} kN ({group})")
     print(f"  piston position              {static['x_piston'] * 1e3:10.1f} mm from retracted")
     print(
         f"  pump displacement to hold    {static['V_p_hold'] * 1e6:10.3f} cm³/rev "
         "(Table 5 flow, valves open)"
     )
     print(f"  k_eq (chambers closed)       {report.k_eq_n_per_m:10.4g} N/m (Eq. 28, errata 6)")
+    if not info.is_default:
+        print(
+            "  (pump, valves, friction, accumulator: the skid-steer's values, estimates for "
+            "this machine)"
+        )
     print("\nModes of the coupled plant (frequency Hz / damping ratio):")
     for name, modes in report.modes.items():
         listed = ", ".join(f"{f:.2f}/{z:.3f}" for f, z in modes)
@@ -59,13 +73,14 @@ def run(args: argparse.Namespace) -> int:
         print(f"  {name}: DC gain {item.dc_gain:.3g}, |G(1 Hz)| {abs(item.gain_at_1hz):.3g}")
         print(f"    slowest poles [rad/s]: {poles}")
     reference = next(iter(report.comparisons.values()))
+    paper = "Eq. 43" if info.is_default else "Eq. 43 (the paper's skid-steer, for reference)"
     print(
-        f"  Eq. 43: DC gain {reference.reference_dc_gain:.3g}, poles "
+        f"  {paper}: DC gain {reference.reference_dc_gain:.3g}, poles "
         + ", ".join(f"{p:.3g}" for p in reference.reference_poles)
         + ", zero "
         + ", ".join(f"{z:.3g}" for z in reference.reference_zeros)
     )
-    title = f"Pressure loop of the detailed plant and Eq. 43 (load {args.load})"
+    title = f"{name}Pressure loop of the detailed plant and Eq. 43 (load {args.load})"
     write_atomically(
         args.plot,
         lambda temporary: plot_pressure_loop(report, temporary, title),

@@ -14,7 +14,12 @@ from __future__ import annotations
 
 import argparse
 
-from loader_model.commands.common import add_model_arguments, add_progress_argument
+from loader_model.commands.common import (
+    add_machine_argument,
+    add_model_arguments,
+    add_progress_argument,
+    require_skid_steer,
+)
 
 __all__ = ["GUIDE", "HELP", "add_arguments", "run"]
 
@@ -24,6 +29,7 @@ GUIDE = "bound.md"  # its page of the user guide (docs/guide/)
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Register the arguments of ``loader-model preview``."""
+    add_machine_argument(parser, note=" (the skid-steer only: its plant is the preview law's)")
     add_model_arguments(parser)
     parser.add_argument(
         "--speed", type=float, default=9.0, metavar="KMH", help="speed in km/h: 9 or 18"
@@ -69,6 +75,11 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
     import numpy as np
     from tqdm import tqdm
 
+    require_skid_steer(
+        args,
+        "the preview law is designed on the skid-steer's plant; hydraulics, modes, model, "
+        "simulate and export-fmu take any machine",
+    )
     if args.speed not in (9.0, 18.0):
         raise ValueError(f"--speed {args.speed:g}: allowed: 9 or 18 km/h (the paper's course)")
     lengths = _lengths(args.preview)

@@ -16,9 +16,10 @@ from loader_model.control.pressure_loop import (
     compare_with_equation_43,
     pressure_loop,
 )
+from loader_model.machines import DEFAULT_MACHINE
 from loader_model.plant.linear import linearise_plant, undamped_matrices_from_plant
-from loader_model.plant.plant import OUTPUT_NAMES, plant_function
-from loader_model.plant.plant_parameters import PlantOptions, plant_parameter_vector
+from loader_model.plant.plant_parameters import PlantOptions
+from loader_model.plant.scenario import PlantScenario, resolve_plant
 
 __all__ = ["HydraulicsReport", "hydraulics_report", "plot_pressure_loop"]
 
@@ -48,10 +49,15 @@ class HydraulicsReport:
     """Per setting: (frequency [Hz], damping ratio) of the oscillatory modes below 100 Hz."""
     loops: dict[str, Any]
     comparisons: dict[str, PressureLoopComparison]
+    machine: str = DEFAULT_MACHINE
+    """The machine (:func:`loader_model.machines.list_machines`)."""
+    cylinder_count: int = 2
+    """Lift cylinders in parallel (``n_cyl``; the static force is theirs together)."""
 
 
-def _modes(params: np.ndarray) -> list[tuple[float, float]]:
-    poles = np.linalg.eigvals(linearise_plant(params).state_space().A)
+def _modes(plant: PlantScenario) -> list[tuple[float, float]]:
+    linear = linearise_plant(plant.params, plant.x0, plant.u0, machine=plant.machine)
+    poles = np.linalg.eigvals(linear.state_space().A)
     out = [
         (abs(s) / (2 * np.pi), -s.real / abs(s))
         for s in poles
@@ -60,43 +66,60 @@ def _modes(params: np.ndarray) -> list[tuple[float, float]]:
     return sorted(out)
 
 
-def hydraulics_report(loader: Any, load: Any, *, highpass_rad_s: float = 1.0) -> HydraulicsReport:
-    """Static pressures, k_eq, modes per setting and the pressure loop of ``loader``."""
-    from loader_model.plant.equilibrium import static_state
-    from loader_model.vehicle.statics import resolve_machine
+def _loop_scales(plant: PlantScenario) -> tuple[float, float, float]:
+    """‖p_A‖∞ [Pa], V_p,max [m³/rev] and k_p of the pressure loop of ``plant``: the skid-steer's
+    from its load case and loader file, another machine's from
+    :func:`~loader_model.plant.machine_parameters.pressure_norm` and the shipped controller
+    settings (Table 3's k_p)."""
+    if plant.is_default_machine:
+        loader, load = plant.loader, plant.load
+        return load.pressure_normalisation, loader.pump.max_displacement, loader.controller.k_p
+    from loader_model.control.settings import default_settings
+    from loader_model.plant.machine_parameters import pressure_norm
 
-    loader, load = resolve_machine(loader, load)
+    norm = pressure_norm(plant.output("p_A"))
+    return norm, plant.parameter("V_p_max"), default_settings().k_p
 
-    params = plant_parameter_vector(loader, load)
-    state, command = static_state(params)
-    outputs = np.asarray(plant_function()(state, command, np.zeros(11), params)[1]).ravel()
-    static = dict(zip(OUTPUT_NAMES, outputs.tolist(), strict=True)) | {"V_p_hold": command}
-    _, _, k_eq = undamped_matrices_from_plant(
-        plant_parameter_vector(loader, load, PlantOptions.closed())
-    )
-    modes = {
-        name: _modes(plant_parameter_vector(loader, load, options))
-        for name, options in SETTINGS.items()
-    }
-    plant = linearise_plant(params).state_space()
+
+def hydraulics_report(
+    loader: Any,
+    load: Any,
+    *,
+    highpass_rad_s: float = 1.0,
+    machine: str = DEFAULT_MACHINE,
+) -> HydraulicsReport:
+    """Static pressures, k_eq, modes per setting and the pressure loop of ``loader``.
+
+    Parameters
+    ----------
+    loader, load
+        The loader (object, file or None for the shipped one) and its bucket load, as
+        :func:`~loader_model.plant.scenario.resolve_plant` takes them; for another machine than
+        the skid-steer its parameter file and a load case of it.
+    highpass_rad_s : float
+        Corner of the high-pass on the measured p_A in the pressure loop [rad/s].
+    machine : str
+        A machine name or description file (default the skid-steer of the paper).
+    """
+    plant = resolve_plant(loader, load, PlantOptions(), machine=machine)
+    static = dict(zip(plant.layout.output_names, plant.y0.tolist(), strict=True))
+    static["V_p_hold"] = plant.u0
+    closed = plant.with_options(PlantOptions.closed())
+    _, _, k_eq = undamped_matrices_from_plant(closed.params, machine=plant.machine)
+    modes = {name: _modes(plant.with_options(options)) for name, options in SETTINGS.items()}
+    linear = linearise_plant(plant.params, plant.x0, plant.u0, machine=plant.machine)
+    state_space = linear.state_space()
+    norm, max_displacement, k_p = _loop_scales(plant)
     loops = {
-        f"high-pass {highpass_rad_s:g} rad/s": pressure_loop(
-            plant,
-            load.pressure_normalisation,
-            loader.pump.max_displacement,
-            k_p=loader.controller.k_p,
-            highpass_rad_s=highpass_rad_s,
-        ),
-        "direct p_A feedback": pressure_loop(
-            plant,
-            load.pressure_normalisation,
-            loader.pump.max_displacement,
-            k_p=loader.controller.k_p,
-            highpass_rad_s=None,
-        ),
+        name: pressure_loop(state_space, norm, max_displacement, k_p=k_p, highpass_rad_s=corner)
+        for name, corner in (
+            (f"high-pass {highpass_rad_s:g} rad/s", highpass_rad_s),
+            ("direct p_A feedback", None),
+        )
     }
     comparisons = {name: compare_with_equation_43(loop) for name, loop in loops.items()}
-    return HydraulicsReport(static, k_eq, modes, loops, comparisons)
+    count = round(plant.parameter("n_cyl"))
+    return HydraulicsReport(static, k_eq, modes, loops, comparisons, plant.machine, count)
 
 
 def plot_pressure_loop(report: HydraulicsReport, path: Path, title: str) -> None:

@@ -67,7 +67,7 @@ def _broken(tmp_path: Path, old: str, new: str, text: str = SKID_STEER) -> Path:
         ('[sensors.H]\naxes = ["x", "y"]', '[sensors.H]\naxes = ["x", "y"]\ncolour = "red"', r"sensors\.H: unknown key 'colour'"),  # noqa: E501
         ('[sensors.S]', '[sensors.W]', r"sensors\.W: point 'W' is on no body"),
         ('at = "D"', 'at = "Y"', r"bodies\.boom\.at: point 'Y' is on no body"),
-        ('g = { unit', 'gee = { unit', r"parameters: unknown key 'gee'"),
+        ('g = { unit', 'gee = { unit', r"parameters: unknown parameter 'gee'; missing: g \[m/s\^2\]"),
     ],
 )  # fmt: skip
 def test_bad_descriptions_name_the_entry(tmp_path: Path, old: str, new: str, message: str) -> None:

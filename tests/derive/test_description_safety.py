@@ -17,6 +17,7 @@ import pytest
 
 from derive.__main__ import main as derive_main
 from derive.description import MACHINES_DIR
+from loader_model.machine_packages import derive_extra_command
 
 WHEEL_LOADER = (MACHINES_DIR / "compact_wheel_loader.toml").read_text(encoding="utf-8")
 CHASSIS = 'coordinates = ["x_H", "y_H", "theta_1"]'
@@ -189,7 +190,7 @@ def test_derive_without_sympy_names_the_extra(
     assert derive_main([str(description)]) == 2
     err = capsys.readouterr().err
     assert err == (
-        "python -m derive: needs SymPy; install the derive extra: pip install -e '.[derive]'\n"
+        f"python -m derive: needs SymPy; install the derive extra: {derive_extra_command()}\n"
     )
 
 

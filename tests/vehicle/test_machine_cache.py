@@ -23,6 +23,7 @@ from derive.install import install
 from loader_model.cli import main
 from loader_model.machine_packages import (
     cache_root,
+    derive_command,
     description_hash,
     generated_folder,
     prepare_cache,
@@ -124,7 +125,7 @@ def test_tampered_cache_is_refused_before_anything_runs(
     _tamper(kind, folder, marker, tmp_path)
     with pytest.raises(ValueError, match=message) as error:
         machine(description)
-    assert f"derive it again with `python -m derive {description}`" in str(error.value)
+    assert f"derive it again with `{derive_command(description)}`" in str(error.value)
     assert not marker.exists()
 
 
@@ -168,7 +169,7 @@ def test_broken_package_exits_2_naming_the_repair(
         err = capsys.readouterr().err
         assert err.count("\n") == 1 and "Traceback" not in err, err
         assert re.search(message, err), err
-        assert f"python -m derive {description}" in err, err
+        assert derive_command(description) in err, err
 
 
 def test_a_worker_process_verifies_and_imports_the_same_folder(tmp_path: Path) -> None:

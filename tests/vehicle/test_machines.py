@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import tomllib
 from pathlib import Path
 
@@ -11,6 +12,7 @@ import pytest
 import loader_model_generated as skid
 import loader_model_generated.compact_wheel_loader as wl
 from derive.description import MACHINES_DIR
+from loader_model.machine_packages import derive_command
 from loader_model.machines import generated_folder, list_machines, machine, resolve_machine_name
 from loader_model.parameters.machine_files import (
     default_machine_parameters,
@@ -70,7 +72,7 @@ def test_registry_errors(tmp_path: Path) -> None:
     with pytest.raises(
         ValueError,
         match=rf"'tractor' has no generated package for this version of the file \(none in "
-        rf"{folder}/\); derive it with `python -m derive {other}`",
+        rf"{folder}/\); derive it with `{re.escape(derive_command(other))}`",
     ):
         machine(other)
     changed = tmp_path / "wl.toml"
