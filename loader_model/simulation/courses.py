@@ -41,6 +41,7 @@ __all__ = [
     "PAPER_BOARD_COUNT",
     "PAPER_SPACING_M",
     "Course",
+    "board_course_at",
     "board_spacing_m",
     "boards_at_speed",
     "iso8608_course",
@@ -195,29 +196,101 @@ def boards_at_speed(
     speed_kmh : float
         Driven speed in km/h, (0, 100].
     board_width_m : float
-        Board width in m (default: the assumed 2x6 plank, module notes).
+        Board width in m, its length along the path (default: the assumed 2x6 plank, module
+        notes).
     position_jitter_m, seed : float, int
         Standard deviation in m of a seeded normal shift of each board (boards laid by hand).
     settle_s : float
         Seconds driven after the rear axle has left the last board, [0, 60].
     name : str, optional
         Label (default: the boards, their spacing and the speed).
+
+    See Also
+    --------
+    board_course_at : any number, spacing, height and length of boards.
+    """
+    return board_course_at(
+        speed_kmh,
+        length_m=board_width_m,
+        position_jitter_m=position_jitter_m,
+        seed=seed,
+        settle_s=settle_s,
+        name=name,
+    )
+
+
+def board_course_at(
+    speed_kmh: float,
+    *,
+    spacing_m: float | None = None,
+    height_m: float = BOARD_HEIGHT_M,
+    length_m: float = BOARD_WIDTH_M,
+    count: int = PAPER_BOARD_COUNT,
+    position_jitter_m: float = 0.0,
+    seed: int = 0,
+    settle_s: float = 3.0,
+    name: str | None = None,
+) -> Course:
+    """A course of equal boards on flat ground driven at ``speed_kmh``: the paper's (section 5.3)
+    with any speed, spacing, board height, board length and number of boards.
+
+    With the defaults it is :func:`boards_at_speed`, and at 9 and 18 km/h :func:`paper_course`.
+
+    Parameters
+    ----------
+    speed_kmh : float
+        Driven speed in km/h, (0, 100].
+    spacing_m : float, optional
+        Leading edge to leading edge in m, (``length_m``, 1000] (default: the paper's rule,
+        :func:`board_spacing_m`; ignored for one board).
+    height_m : float
+        Board height in m, (0, 0.5] (default: the paper's 40 mm).
+    length_m : float
+        Board length along the path in m, (0, 5] (default: the assumed 140 mm plank, module
+        notes).
+    count : int
+        Number of boards, 1 to 1000 (default: the paper's five).
+    position_jitter_m, seed : float, int
+        Standard deviation in m of a seeded normal shift of each board (boards laid by hand).
+    settle_s : float
+        Seconds driven after the rear axle has left the last board, [0, 60].
+    name : str, optional
+        Label (default: the boards, their spacing and the speed).
+
+    Raises
+    ------
+    ValueError
+        Naming the argument, its value and the allowed range.
     """
     speed_kmh = as_number(
         speed_kmh, "speed_kmh", "km/h", minimum=0.0, maximum=100.0, strict_minimum=True
     )
-    spacing_m = board_spacing_m(speed_kmh)
+    length_m = as_number(length_m, "length_m", "m", minimum=0.0, maximum=5.0, strict_minimum=True)
+    height_m = as_number(height_m, "height_m", "m", minimum=0.0, maximum=0.5, strict_minimum=True)
+    if spacing_m is None:
+        spacing_m = board_spacing_m(speed_kmh)
+    else:
+        spacing_m = as_number(
+            spacing_m, "spacing_m", "m", minimum=length_m, maximum=1000.0, strict_minimum=True
+        )
+    settle_s = as_number(settle_s, "settle_s", "s", minimum=0.0, maximum=60.0)
+    if isinstance(count, bool) or not isinstance(count, int) or not 1 <= count <= 1000:
+        raise ValueError(f"count must be an integer in [1, 1000] boards; got {count!r}")
+    if name is None:
+        name = f"{count} boards {height_m * 1e3:g} mm"
+        name += "" if length_m == BOARD_WIDTH_M else f" x {length_m * 1e3:g} mm"
+        name += f", {spacing_m:g} m apart, at {speed_kmh:g} km/h" if count > 1 else ""
+        name += "" if count > 1 else f" at {speed_kmh:g} km/h"
     profile = board_course(
-        PAPER_BOARD_COUNT,
-        height_m=BOARD_HEIGHT_M,
-        width_m=board_width_m,
+        count,
+        height_m=height_m,
+        width_m=length_m,
         spacing_m=spacing_m,
         first_board_m=0.0,
         position_jitter_m=position_jitter_m,
         seed=seed,
-        name=name or f"5 boards 40 mm, {spacing_m:g} m apart, at {speed_kmh:g} km/h",
+        name=name,
     )
-    settle_s = as_number(settle_s, "settle_s", "s", minimum=0.0, maximum=60.0)
     return Course(profile, kmh_to_m_s(speed_kmh), -LEAD_IN_M, settle_s, profile.name)
 
 
