@@ -23,7 +23,8 @@ from tests.robustness.test_robustness_study import TINY
         (["bound", "--factors", "1,2"], "--factors '1,2': allowed only with --pump-sizing"),
         (
             ["simulate", "--course", "iso8608:C:extra"],
-            "--course must be paper, single or iso8608:A to iso8608:H; got 'iso8608:C:extra'",
+            "--course must be paper, boards, single, iso8608:A to iso8608:H or a course file "
+            "FILE.toml; got 'iso8608:C:extra'",
         ),
         (
             ["simulate", "--course", "iso8608:C", "--speed", "1e-9"],
