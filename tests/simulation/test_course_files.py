@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import re
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -163,3 +164,14 @@ def test_course_file_errors_name_every_bad_entry(tmp_path, text, messages):
 def test_missing_course_file_is_named(tmp_path):
     with pytest.raises(CourseFileError, match=r"no_such\.toml"):
         load_course_file(tmp_path / "no_such.toml", 9.0)
+
+
+def test_guide_example_course_file_is_valid_and_shown_as_it_is():
+    """docs/examples/my_yard.toml loads, and the guide's simulation page shows it unchanged."""
+    root = Path(__file__).resolve().parents[2]
+    example = root / "docs" / "examples" / "my_yard.toml"
+    course = load_course_file(example, 9.0)
+    assert course.name == "my yard at 9 km/h"
+    assert course.profile.height_m.min() == -0.05 and course.profile.height_m.max() == 0.08
+    page = (root / "docs" / "guide" / "simulation.md").read_text(encoding="utf-8")
+    assert f"```toml\n{example.read_text(encoding='utf-8')}```" in page
