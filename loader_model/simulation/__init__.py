@@ -10,7 +10,9 @@
 - :mod:`~loader_model.simulation.iso8608`: ISO 8608 random roads by class from a seed, PSD check.
 - :mod:`~loader_model.simulation.road_csv`: profiles from and to CSV files with units.
 - :mod:`~loader_model.simulation.travel`: the plant's road input w(t), ẇ(t) per axle as a table.
-- :mod:`~loader_model.simulation.courses`: the paper's course, the Fig. 10 single obstacle.
+- :mod:`~loader_model.simulation.courses`: the paper's course, boards at any speed, spacing,
+  height and length, the Fig. 10 single obstacle.
+- :mod:`~loader_model.simulation.obstacles`: obstacle lists of your own, from TOML course files.
 - :mod:`~loader_model.simulation.road_plot`: figure of a course (matplotlib, lazily).
 
 The closed loop (imported from their modules, not here, so that this package stays free of
@@ -38,6 +40,7 @@ from loader_model.simulation.courses import (
     PAPER_BOARD_COUNT,
     PAPER_SPACING_M,
     Course,
+    board_course_at,
     iso8608_course,
     kmh_to_m_s,
     paper_course,
@@ -54,6 +57,13 @@ from loader_model.simulation.iso8608 import (
     estimate_psd,
     iso8608_profile,
     profile_variance,
+)
+from loader_model.simulation.obstacles import (
+    CourseFileError,
+    Obstacle,
+    load_course_file,
+    obstacle_course,
+    obstacle_profile,
 )
 from loader_model.simulation.road_csv import RoadFileError, read_road_csv, write_road_csv
 from loader_model.simulation.road_plot import plot_course
@@ -90,13 +100,16 @@ __all__ = [
     "ROAD_NAMES",
     "WAVINESS",
     "Course",
+    "CourseFileError",
     "EffectiveRoad",
+    "Obstacle",
     "RoadFileError",
     "RoadInput",
     "RoadProfile",
     "TandemCam",
     "TandemCamRoad",
     "board_course",
+    "board_course_at",
     "classify_psd",
     "displacement_psd",
     "edge_contact_length",
@@ -106,6 +119,9 @@ __all__ = [
     "iso8608_course",
     "iso8608_profile",
     "kmh_to_m_s",
+    "load_course_file",
+    "obstacle_course",
+    "obstacle_profile",
     "paper_course",
     "plot_course",
     "profile_variance",

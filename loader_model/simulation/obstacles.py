@@ -134,6 +134,18 @@ def _overlaps(obstacles: Sequence[Obstacle]) -> list[str]:
 def obstacle_profile(obstacles: Sequence[Obstacle], *, name: str = "obstacles") -> RoadProfile:
     """The ground of ``obstacles`` (any order, none touching another) on flat ground at 0.
 
+    Parameters
+    ----------
+    obstacles : sequence of Obstacle
+        1 to 1000 obstacles.
+    name : str
+        Label of the profile.
+
+    Returns
+    -------
+    RoadProfile
+        The obstacles' outlines in order along the path, flat ground between and beyond.
+
     Raises
     ------
     ValueError
@@ -162,8 +174,30 @@ def obstacle_course(
     settle_s: float = 3.0,
     name: str = "obstacles",
 ) -> Course:
-    """``obstacles`` driven at ``speed_kmh`` (0, 100] km/h from :data:`LEAD_IN_M` before the
-    first, for ``settle_s`` [0, 60] s after the rear axle has passed the last."""
+    """``obstacles`` driven at constant speed, the front axle starting :data:`LEAD_IN_M` before
+    the first.
+
+    Parameters
+    ----------
+    obstacles : sequence of Obstacle
+        1 to 1000 obstacles, none touching another (:func:`obstacle_profile`).
+    speed_kmh : float
+        Driven speed in km/h, (0, 100].
+    settle_s : float
+        Seconds driven after the rear axle has passed the last obstacle, [0, 60].
+    name : str
+        Label; the course's is ``"{name} at {speed_kmh} km/h"``.
+
+    Returns
+    -------
+    Course
+        The drive.
+
+    Raises
+    ------
+    ValueError
+        Naming the argument or the obstacles and what is allowed.
+    """
     profile = obstacle_profile(obstacles, name=name)
     speed_m_s = kmh_to_m_s(
         as_number(speed_kmh, "speed_kmh", "km/h", minimum=0.0, maximum=100.0, strict_minimum=True)
