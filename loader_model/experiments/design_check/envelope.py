@@ -5,14 +5,18 @@ The default envelope (:data:`DEFAULT_ENVELOPE`): both bucket loads; the paper's 
 extended to any speed (:func:`~loader_model.simulation.courses.board_spacing_m`: 6 m at 9 km/h,
 9 m at 18 km/h, linear in the speed); ISO 8608 roads of classes B, C and D at 5, 15 and
 30 km/h, :attr:`Envelope.road_seconds` of road each; after every road a settle window of
-:attr:`Envelope.settle_s` on flat ground. The criteria a condition must meet sit beside it
-(:class:`Envelope`). A TOML file overrides any of them (:func:`load_envelope`)::
+:attr:`Envelope.settle_s` on flat ground. Courses of the user's own (course files of
+:mod:`loader_model.simulation.obstacles`) may be added with :attr:`Envelope.courses`, driven at
+:attr:`Envelope.course_speeds_kmh`; the default envelope has none. The criteria a condition
+must meet sit beside it (:class:`Envelope`). A TOML file overrides any of them (:func:`load_envelope`)::
 
     [envelope]
     loads = ["empty", "full"]
     board_speeds_kmh = [5.0, 9.0, 13.5, 18.0]
     road_classes = ["B", "C", "D"]
     road_speeds_kmh = [5.0, 15.0, 30.0]
+    courses = []                 # course files, e.g. ["my_yard.toml"], relative to this file
+    course_speeds_kmh = [5.0, 9.0, 13.5, 18.0]
     road_seconds = 8.0
     settle_s = 3.0
     seeds = [0]
@@ -35,9 +39,11 @@ from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import Any
 
-__all__ = ["DEFAULT_ENVELOPE", "Condition", "Envelope", "load_envelope"]
+__all__ = ["COURSE_PREFIX", "DEFAULT_ENVELOPE", "Condition", "Envelope", "load_envelope"]
 
 _CLASSES = ("A", "B", "C", "D", "E", "F", "G", "H")
+#: Prefix of a condition's road that is a course file: ``"course:"`` and the file's path.
+COURSE_PREFIX = "course:"
 
 
 @dataclass(frozen=True)
@@ -49,7 +55,8 @@ class Condition:
     load : str
         The load case (``"empty"``, ``"full"``, or another machine's case).
     road : str
-        ``"boards"`` (the paper's course at any speed) or an ISO 8608 class ``"A"`` - ``"H"``.
+        ``"boards"`` (the paper's course at any speed), an ISO 8608 class ``"A"`` - ``"H"``, or
+        ``"course:"`` and the path of a course file.
     speed_kmh : float
         Driven speed.
     seed : int
@@ -65,6 +72,8 @@ class Condition:
     def label(self) -> str:
         """A short name, e.g. ``full, boards 9 km/h`` or ``empty, ISO C 15 km/h (seed 1)``."""
         road = "boards" if self.road == "boards" else f"ISO {self.road}"
+        if self.road.startswith(COURSE_PREFIX):
+            road = Path(self.road[len(COURSE_PREFIX) :]).stem
         seed = f" (seed {self.seed})" if self.seed else ""
         return f"{self.load}, {road} {self.speed_kmh:g} km/h{seed}"
 
@@ -77,6 +86,8 @@ class Envelope:
     board_speeds_kmh: tuple[float, ...] = (5.0, 9.0, 13.5, 18.0)
     road_classes: tuple[str, ...] = ("B", "C", "D")
     road_speeds_kmh: tuple[float, ...] = (5.0, 15.0, 30.0)
+    courses: tuple[str, ...] = ()
+    course_speeds_kmh: tuple[float, ...] = (5.0, 9.0, 13.5, 18.0)
     road_seconds: float = 8.0
     settle_s: float = 3.0
     seeds: tuple[int, ...] = (0,)
@@ -92,12 +103,18 @@ class Envelope:
         _check(self)
 
     def conditions(self) -> tuple[Condition, ...]:
-        """Every (load, road, speed, seed), boards first; the board course with seed 0 only
-        when one seed is given (its boards lie where the paper put them)."""
+        """Every (load, road, speed, seed): boards first, then the course files, then the
+        ISO 8608 roads; the board course with seed 0 only when one seed is given (its boards
+        lie where the paper put them)."""
         rows = []
         for load in self.loads:
             for seed in self.seeds:
                 rows += [Condition(load, "boards", v, seed) for v in self.board_speeds_kmh]
+                rows += [
+                    Condition(load, COURSE_PREFIX + course, v, seed)
+                    for course in self.courses
+                    for v in self.course_speeds_kmh
+                ]
                 rows += [
                     Condition(load, c, v, seed)
                     for c in self.road_classes
@@ -114,7 +131,7 @@ def _check(envelope: Envelope) -> None:
 
     if not envelope.loads or not all(isinstance(x, str) and x for x in envelope.loads):
         fail("loads", envelope.loads, "a non-empty list of load-case names")
-    for name in ("board_speeds_kmh", "road_speeds_kmh"):
+    for name in ("board_speeds_kmh", "road_speeds_kmh", "course_speeds_kmh"):
         for v in getattr(envelope, name):
             if isinstance(v, bool) or not isinstance(v, int | float) or not 1.0 <= v <= 60.0:
                 fail(name, getattr(envelope, name), "speeds from 1 to 60 km/h")
@@ -123,8 +140,11 @@ def _check(envelope: Envelope) -> None:
             fail("road_classes", envelope.road_classes, f"ISO 8608 classes among {_CLASSES}")
     if envelope.road_classes and not envelope.road_speeds_kmh:
         fail("road_speeds_kmh", envelope.road_speeds_kmh, "at least one speed for the roads")
-    if not envelope.board_speeds_kmh and not envelope.road_classes:
+    if envelope.courses and not envelope.course_speeds_kmh:
+        fail("course_speeds_kmh", envelope.course_speeds_kmh, "at least one speed for the courses")
+    if not envelope.board_speeds_kmh and not envelope.road_classes and not envelope.courses:
         fail("board_speeds_kmh", envelope.board_speeds_kmh, "at least one course or road")
+    _check_courses(envelope, fail)
     if not envelope.seeds or not all(
         isinstance(s, int) and not isinstance(s, bool) and 0 <= s < 2**32 for s in envelope.seeds
     ):
@@ -152,6 +172,19 @@ def _check(envelope: Envelope) -> None:
             fail(name, value, f"a number from {low:g} to {high:g}")
 
 
+def _check_courses(envelope: Envelope, fail: Any) -> None:
+    """Every course file of the envelope must be a readable, valid course file."""
+    from loader_model.simulation.obstacles import load_course_file
+
+    for course in envelope.courses:
+        if not isinstance(course, str) or not course.endswith(".toml"):
+            fail("courses", envelope.courses, "a list of course files FILE.toml")
+        try:
+            load_course_file(course, 9.0)
+        except ValueError as error:
+            fail("courses", course, f"a valid course file ({error})")
+
+
 #: The default envelope (module notes).
 DEFAULT_ENVELOPE = Envelope()
 
@@ -161,6 +194,8 @@ _SECTIONS = {
         "board_speeds_kmh",
         "road_classes",
         "road_speeds_kmh",
+        "courses",
+        "course_speeds_kmh",
         "road_seconds",
         "settle_s",
         "seeds",
@@ -207,6 +242,11 @@ def load_envelope(path: str | Path) -> Envelope:
                 f"{list(keys)}"
             )
         values.update(table)
+    if "courses" in values and isinstance(values["courses"], list):
+        values["courses"] = [
+            str(path.parent / course) if isinstance(course, str) else course
+            for course in values["courses"]
+        ]
     kinds = {f.name: f.default for f in fields(Envelope)}
     for name, value in list(values.items()):
         if isinstance(kinds[name], tuple):

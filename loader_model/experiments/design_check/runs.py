@@ -16,7 +16,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
-from loader_model.experiments.design_check.envelope import Condition, Envelope
+from loader_model.experiments.design_check.envelope import COURSE_PREFIX, Condition, Envelope
 
 if TYPE_CHECKING:
     from loader_model.control.settings import ControllerSettings
@@ -126,6 +126,12 @@ def condition_scenario(design: Design, load: str, which: str) -> Any:
 
 def condition_course(condition: Condition, envelope: Envelope) -> Any:
     from loader_model.simulation.courses import boards_at_speed, iso8608_course, kmh_to_m_s
+    from loader_model.simulation.obstacles import load_course_file
+
+    if condition.road.startswith(COURSE_PREFIX):
+        return load_course_file(
+            condition.road[len(COURSE_PREFIX) :], condition.speed_kmh, settle_s=envelope.settle_s
+        )
 
     if condition.road == "boards":
         jitter = 0.05 if condition.seed else 0.0  # boards laid by hand, as in Table 6's trials
