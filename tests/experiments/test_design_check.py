@@ -77,6 +77,25 @@ def test_a_condition_worse_than_baseline_is_named(decaying) -> None:
     assert judged.change == pytest.approx(0.1, rel=1e-12)
 
 
+def test_motion_at_the_level_of_the_sensors_noise_is_not_an_oscillation(limit_cycle) -> None:
+    """A run that keeps its level after the road counts as persistent only above twice what
+    the design keeps at rest with its sensors' noise alone (rest_level, measured per load)."""
+    from loader_model.experiments.design_check import judge_condition
+    from loader_model.simulation.settling import REST_FLOOR_RAD_S2
+
+    (condition,) = limit_cycle.conditions
+    cycling = condition.runs["design"]
+    assert set(limit_cycle.rest_rms) == {"empty"} and limit_cycle.rest_rms["empty"] > 0.0
+    runs = dict(condition.runs)
+    # the same run at 1.5 times a rest level of 0.06 rad/s²: the noise's, not the road's
+    noisy = {"tail_rms": 0.09, "command_duty": 0.0, "a_total": condition.runs["baseline"].a_total}
+    runs["design"] = type(cycling)(**{**cycling.__dict__, **noisy})
+    assert runs["design"].persistent and 0.09 > REST_FLOOR_RAD_S2
+    assert judge_condition(condition.condition, runs, BOARDS_9_KMH, 0.06).failures == ()
+    (failure,) = judge_condition(condition.condition, runs, BOARDS_9_KMH, 0.04).failures
+    assert failure.startswith("persistent oscillation after the road: pitch acceleration 0.090")
+
+
 def test_reports_render(limit_cycle) -> None:
     markdown = check_markdown(limit_cycle)
     table = [line for line in markdown.splitlines() if line.startswith("|")]
