@@ -4,6 +4,7 @@ model's means from many trials, read from the shipped study (``data/table6_scatt
 
 from __future__ import annotations
 
+import math
 import re
 from collections.abc import Sequence
 from typing import Any
@@ -33,6 +34,11 @@ def _ratio(model_sd: float, implied: ImpliedScatter) -> tuple[str, bool]:
     if implied.upper_bound:
         return f"≥ {ratio:.1f}", ratio <= FACTOR
     return f"{ratio:.1f}", 1.0 / FACTOR <= ratio <= FACTOR
+
+
+def _trials_needed(row: dict[str, Any]) -> int:
+    """Trials per group for a standard error of :data:`SE_GOAL_PP` (the SE falls as 1/√n)."""
+    return max(2, math.ceil(int(row["trials"]) * (row["se_pp"] / SE_GOAL_PP) ** 2))
 
 
 def scatter_rows_for_report(rows: Sequence[dict[str, Any]]) -> tuple[Rows, dict[str, int]]:
@@ -65,7 +71,9 @@ def scatter_rows_for_report(rows: Sequence[dict[str, Any]]) -> tuple[Rows, dict[
             "paper's implied SD [%]",
             f"model SD [%] ({'/'.join(map(str, trials))} trials)",
             "ratio model / paper",
+            "model SD controller / baseline [%]",
             "model Δ ± SE [%]",
+            f"trials for SE ≤ {SE_GOAL_PP:g} pp",
             "|Δ − Δ_paper| [pp]",
             f"model, first {PAPER_TRIALS} trials: Δ [95 % CI] [%]",
             f"model, first {PAPER_TRIALS} trials: SD [%]",
@@ -94,7 +102,9 @@ def scatter_rows_for_report(rows: Sequence[dict[str, Any]]) -> tuple[Rows, dict[
                 _paper_sd(implied[key]),
                 f"{r['sd_pct']:.1f}",
                 ratio,
+                f"{r['sd_controller_pct']:.1f} / {r['sd_baseline_pct']:.1f}",
                 f"{r['change_pct']:+.1f} ± {r['se_pp']:.1f}",
+                str(_trials_needed(r)),
                 f"{distance:.1f}",
                 f"{r['four_change_pct']:+.1f} [{r['four_low_pct']:+.1f}, {r['four_high_pct']:+.1f}]",
                 f"{r['four_sd_pct']:.1f}",
@@ -138,6 +148,7 @@ def scatter_section(
     table, counts = scatter_rows_for_report(rows)
     trials = sorted({int(r["trials"]) for r in rows})
     largest_se = max(r["se_pp"] for r in rows)
+    needed = max(_trials_needed(r) for r in rows)
     parts = [
         title,
         "Table 6 gives each cell's mean change Δ and a t-test p over 4 + 4 trials. Under "
@@ -147,16 +158,20 @@ def scatter_section(
         "s = |Δ| / (t₁₋ₚ/₂,₆ · √(2/4)). The brackets give s over the rounding of the printed p "
         "(± 5·10⁻⁵); a printed p = 0.0000 says only p < 5·10⁻⁵, so s is an upper bound there "
         "and the ratio a lower one. The model's SD is the pooled standard deviation of its "
-        "baseline and controller trials in the same units; its mean change comes from "
+        "baseline and controller trials in the same units (each group's beside it); its mean "
+        "change comes from "
         f"{'/'.join(map(str, trials))} trials per group, with the standard error of the "
-        "delta method on the ratio of means. The last two columns are the same study's first "
+        "delta method on the ratio of means, and the trials a standard error of "
+        f"{SE_GOAL_PP:g} pp needs (the standard error falls as 1/√n). The last two columns are "
+        "the same study's first "
         f"four trials, the trials of `loader-model reproduce --seed 0`: what {PAPER_TRIALS} "
         "trials give.\n",
         markdown_table(table) + "\n",
         f"**With {'/'.join(map(str, trials))} trials per group, {counts['within']} of "
         f"{counts['cells']} cells lie within {FIDELITY_POINTS:g} pp of the paper** (largest "
         f"standard error {largest_se:.1f} pp; {counts['se_met']} of {counts['cells']} cells "
-        f"at most {SE_GOAL_PP:g} pp); with the first four trials, {counts['within_four']} of "
+        f"at most {SE_GOAL_PP:g} pp, which takes up to {needed} trials per group); with the "
+        f"first four trials, {counts['within_four']} of "
         f"{counts['cells']}. The model's scatter is within a factor of {FACTOR:g} of the "
         f"paper's in {counts['scatter_within']} of {counts['cells']} cells.",
     ]

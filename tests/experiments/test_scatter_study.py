@@ -71,6 +71,14 @@ def test_the_section_counts_against_the_implied_scatter() -> None:
     assert "differ by at most" not in other_seed
 
 
+def test_the_shipped_section_renders() -> None:
+    from tests.experiments.test_report_markdown import assert_every_table_renders
+
+    text, table = scatter_section(shipped_scatter())
+    assert table is not None and len(table) == 13
+    assert_every_table_renders(text)
+
+
 def test_without_a_study_the_section_says_how_to_make_it() -> None:
     text, table = scatter_section(None)
     assert table is None and "make scatter" in text
