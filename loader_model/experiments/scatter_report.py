@@ -186,7 +186,8 @@ def scatter_section(
         "delta method on the ratio of means, and the trials a standard error of "
         f"{SE_GOAL_PP:g} pp needs (the standard error falls as 1/√n). The last two columns are "
         "the same study's first "
-        f"four trials, the trials of `loader-model reproduce --seed 0`: what {PAPER_TRIALS} "
+        f"four trials, the trials of `loader-model reproduce --seed {_study_seed(header)}`: "
+        f"what {PAPER_TRIALS} "
         "trials give.\n",
         markdown_table(table) + "\n",
         f"**With {'/'.join(map(str, trials))} trials per group, {counts['within']} of "
