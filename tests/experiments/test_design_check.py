@@ -130,3 +130,20 @@ def test_envelope_conditions_and_errors(tmp_path) -> None:
         path.write_text(text)
         with pytest.raises(ValueError, match=message):
             load_envelope(path)
+
+
+def test_a_margin_met_to_the_designs_tolerance_passes(decaying) -> None:
+    """The gain design puts its optimum on σ itself: a margin 0.05 % of σ short passes, 0.2 %
+    short fails and is named with the margin."""
+    import dataclasses
+
+    from loader_model.experiments.design_check import LinearMargin
+
+    sigma = decaying.envelope.margin_rad_s
+    for margin, fails in ((sigma * (1 - 5e-4), False), (sigma * (1 - 2e-3), True)):
+        check = dataclasses.replace(decaying, margins={"empty": LinearMargin("empty", margin, 0.1)})
+        assert (not check.passed) is fails
+        assert (
+            any("linearised loop margin 0.0998 rad/s below 0.1" in f for f in check.failures)
+            is fails
+        )
