@@ -326,6 +326,23 @@ def _design_check_quotations() -> list[tuple[str, str]]:
     ]
 
 
+def _tutorial_quotations() -> list[tuple[str, str]]:
+    t6 = table6()
+    cells = [t6[9, "empty", c] for c in ("passive", "virtual-accumulator", "skyhook")]
+    model = sorted(float(c["model Δ [%]"].replace(MINUS, "-")) for c in cells)
+    paper = sorted(float(c["paper Δ [%]"].replace(MINUS, "-")) for c in cells)
+    return [
+        (
+            "docs/guide/tutorial.md",
+            f"the paper measured {number(paper[-1])} % to {number(paper[0])} % at this speed",
+        ),
+        (
+            "docs/guide/tutorial.md",
+            f"the model's changes average {number(model[0])} % to {number(model[-1])} %",
+        ),
+    ]
+
+
 def quotations() -> list[tuple[str, str]]:
     """Every (page, quoted text) rebuilt from its source file."""
     return [
@@ -334,6 +351,7 @@ def quotations() -> list[tuple[str, str]]:
         *_controllers_quotations(),
         *_bound_quotations(),
         *_design_check_quotations(),
+        *_tutorial_quotations(),
     ]
 
 
