@@ -385,3 +385,13 @@ def test_a_changed_source_is_caught(tmp_path, monkeypatch) -> None:
     monkeypatch.setattr(f"{__name__}.RESULTS", tmp_path)
     readme = flat((ROOT / "README.md").read_text(encoding="utf-8"))
     assert any(flat(q) not in readme for page, q in _readme_quotations() if page == "README.md")
+
+
+@pytest.mark.parametrize("page", ["README.md", "docs/guide/reproduction.md"])
+def test_about_a_third_of_plausible_machines(page: str) -> None:
+    """ "About a third" of the sampled machines show the paper's sign at 9 km/h empty: each of
+    the three controllers' shares in the shipped uncertainty study lies within 1/3 ± 0.1."""
+    cells = budget()["uncertainty"]["cells"]
+    shares = [cells[f"9/empty/{c}"]["share"] for c in ("passive", "virtual-accumulator", "skyhook")]
+    assert "about a third" in flat((ROOT / page).read_text(encoding="utf-8"))
+    assert all(abs(share - 1.0 / 3.0) <= 0.1 for share in shares), shares
