@@ -230,6 +230,10 @@ def _controllers_quotations() -> list[tuple[str, str]]:
             f"{empty['skyhook-optimised']:.3f} / {full['skyhook-optimised']:.3f}",
         ),
         (page, f"0.68) {recorded.group(1)} / {recorded.group(2)} (the figure"),
+        (
+            page,
+            f"`bound` reads {empty['skyhook-refined']:.3f} / {full['skyhook-refined']:.3f} today",
+        ),
         (page, f"closed load-holding valves (errata 11): {closed[0]:.3f} / {closed[1]:.3f}"),
         (
             page,
