@@ -9,8 +9,9 @@ quotation below is rebuilt from its source, a file a command wrote and the repos
 - ``loader_model/data/bound_table6.toml``: ``make bound`` (its own slow currency test);
 - ``docs/measurements/bound_9kmh_empty.txt`` (``full``): the output of ``loader-model bound
   --course paper --speed 9 --load empty`` (``full``);
-- ``docs/measurements/check_refined.csv``: ``loader-model check-design`` of the shipped refined
-  gains with ``--output`` (the tutorial's step 5).
+- ``docs/measurements/check_refined.csv`` and ``tutorial/check_refined.txt``: ``loader-model
+  check-design`` of the shipped refined gains with ``--output`` (the tutorial's step 5);
+  ``check_table3_boards9.txt``: ``check-design default`` on ``check_table3_boards9.toml``.
 
 Each quotation is compared as text at the page's rounding: when a source file changes, the test
 names the page and the quotation to update. Cheap: it reads files only.
@@ -321,12 +322,21 @@ def _design_check_quotations() -> list[tuple[str, str]]:
     assert not [k for k, r in rows.items() if k[3] == "design" and r["failures"]], (
         "the design check page says every condition passes"
     )
+    kept = (RESULTS / "tutorial" / "check_refined.txt").read_text(encoding="utf-8")
+    margin = float(re.search(r"empty: .*worst margin (-?\d+\.\d+) rad/s", kept).group(1))
+    table3 = (RESULTS / "check_table3_boards9.txt").read_text(encoding="utf-8")
+    worse = float(
+        re.search(r"^empty, boards 9 km/h(?:\s+\S+){3}\s+\+(\d+\.\d)", table3, re.M).group(1)
+    )
+    page = "docs/guide/design_check.md"
     return [
         (
-            "docs/guide/design_check.md",
+            page,
             f"pass every one of the {len(conditions)} nonlinear conditions of the default "
             f"envelope, {min(better):.1f} % to {max(better):.1f} %",
-        )
+        ),
+        (page, f"margin {number(margin, 2)} rad/s"),
+        (page, f"with the empty bucket {worse:.1f} % worse than the baseline"),
     ]
 
 
