@@ -5,6 +5,7 @@ quotation below is rebuilt from its source, a file a command wrote and the repos
 
 - ``docs/measurements/table6.csv`` and ``designed.csv``: ``loader-model reproduce --seed 0`` (the run
   ``docs/measurements/reproduce.toml`` describes; ``test_shipped_reproduction.py`` reruns it, slow);
+- ``docs/measurements/machine_*.csv``: the second machine's section of the same run;
 - ``loader_model/data/fidelity_budget.json``: ``loader-model fidelity`` (its own slow currency test);
 - ``loader_model/data/bound_table6.toml``: ``make bound`` (its own slow currency test);
 - ``docs/measurements/bound_9kmh_empty.txt`` (``full``): the output of ``loader-model bound
@@ -340,6 +341,35 @@ def _design_check_quotations() -> list[tuple[str, str]]:
     ]
 
 
+def _machines_quotations() -> list[tuple[str, str]]:
+    page = "docs/guide/machines.md"
+    quotes = []
+    with (RESULTS / "machine_comparison.csv").open(encoding="utf-8") as handle:
+        rows = {row["controller"]: row for row in csv.DictReader(handle)}
+    labels = {
+        "baseline": "baseline",
+        "passive": "passive",
+        "virtual-accumulator": "virtual accumulator",
+        "skyhook": "skyhook, Table 3 gains",
+        "skyhook (designed)": "skyhook, designed",
+    }
+    for name, label in labels.items():
+        cells = []
+        for load in ("full", "empty"):
+            value, change = re.match(
+                r"(\S+) \((\S+) %\)", rows[name][f"{load} a_total [m/s²] (Δ)"]
+            ).groups()
+            cells += [value, "" if name == "baseline" else f"{minus(change)} %"]
+        quotes.append((page, f"| {label} | " + " | ".join(cells) + " |"))
+    with (RESULTS / "machine_modes.csv").open(encoding="utf-8") as handle:
+        modes = {row["load"]: row["undamped modes [Hz]"] for row in csv.DictReader(handle)}
+    quotes.append((page, f"with the full bucket: {modes['full']} Hz"))
+    gains = (RESULTS / "machine_gains.csv").read_text(encoding="utf-8").splitlines()[1]
+    values = [minus(v) for v in gains.split(",")[0].split()]
+    quotes.append((page, "K_fb = (" + ", ".join(values) + ")"))
+    return quotes
+
+
 def _tutorial_quotations() -> list[tuple[str, str]]:
     t6 = table6()
     cells = [t6[9, "empty", c] for c in ("passive", "virtual-accumulator", "skyhook")]
@@ -366,6 +396,7 @@ def quotations() -> list[tuple[str, str]]:
         *_bound_quotations(),
         *_design_check_quotations(),
         *_tutorial_quotations(),
+        *_machines_quotations(),
     ]
 
 

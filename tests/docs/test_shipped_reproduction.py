@@ -26,6 +26,9 @@ pytestmark = pytest.mark.slow
 
 RESULTS = Path(__file__).resolve().parents[2] / "docs" / "measurements"
 TOLERANCE_PP = 1.0
+#: the second machine's a_total, modes and gains: relative, plus one unit of the printed rounding
+#: (one nominal drive each; across CPUs the bound table's nominal baselines moved by 3.6e-3)
+RTOL_MACHINE = 5e-3
 
 
 def numbers(text: str) -> list[float]:
@@ -61,3 +64,35 @@ def test_shipped_tables_are_current(tmp_path: Path) -> None:
             if columns:  # the paper's side of Table 6 is the paper's
                 for key in ("paper Δ [%]", "paper p"):
                     assert new[key] == old[key]
+    stale = machine_stale(RESULTS, target)
+    assert not stale, f"stale in docs/measurements (rerun `{run['command']}`): {stale}"
+
+
+def machine_stale(shipped_dir: Path, fresh_dir: Path) -> list[str]:
+    """The rows of the second machine's files (one nominal drive per controller and load, its
+    modes and gains) that moved by more than :data:`RTOL_MACHINE` plus one printed unit."""
+    stale = []
+    for name in ("machine_comparison.csv", "machine_modes.csv", "machine_gains.csv"):
+        shipped = (shipped_dir / name).read_text(encoding="utf-8").splitlines()
+        fresh = (fresh_dir / name).read_text(encoding="utf-8").splitlines()
+        if len(shipped) != len(fresh):
+            stale.append(f"{name}: {len(fresh)} lines, kept {len(shipped)}")
+            continue
+        for old, new in zip(shipped[1:], fresh[1:], strict=True):
+            # the gains lead their row; the other files lead with a label
+            part = (
+                (lambda line: line.split(",")[0])
+                if name == "machine_gains.csv"
+                else (lambda line: line.split(",", 1)[1])
+            )
+            old_text = re.findall(r"[-+]?\d+(?:\.\d+)?", part(old))
+            new_values = numbers(part(new))
+            if len(new_values) != len(old_text):
+                stale.append(f"{name}: {new!r}, kept {old!r}")
+                continue
+            for text, value in zip(old_text, new_values, strict=True):
+                unit = 10.0 ** -len(text.partition(".")[2])  # one unit of the printed rounding
+                if abs(value - float(text)) > RTOL_MACHINE * abs(float(text)) + unit:
+                    stale.append(f"{name}: {new!r}, kept {old!r}")
+                    break
+    return stale
