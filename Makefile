@@ -11,7 +11,7 @@ PIP_QUIET := --quiet --disable-pip-version-check
 TEST_WORKERS ?= 2
 PYTEST_PARALLEL := -n $(TEST_WORKERS) --dist loadscope
 
-.PHONY: setup lock regenerate calibrate calibrate-table6 fidelity gains bound lint test test-slow bench reproduce docs clean
+.PHONY: setup lock regenerate calibrate calibrate-table6 fidelity scatter gains bound lint test test-slow bench reproduce docs clean
 
 $(STAMP): pyproject.toml $(LOCK)
 	$(PYTHON) -m venv $(VENV)
@@ -69,6 +69,12 @@ calibrate-table6: setup
 ## parameters; ships loader_model/data/fidelity_budget.json (minutes; the report renders it)
 fidelity: setup
 	$(VENV)/bin/loader-model fidelity --output loader_model/data/fidelity_budget.json
+
+## scatter: the model's Table 6 trial scatter and means from 150 trials per group beside the
+## scatter the paper's p-values imply; ships loader_model/data/table6_scatter.csv (minutes; the
+## report renders it, a slow test checks it)
+scatter: setup
+	$(PY) -m loader_model.experiments.scatter_study --trials 150 --seed 0 --jobs 2 --output loader_model/data/table6_scatter.csv
 
 ## gains: refine the skyhook gains on the nonlinear paper course (both loads, 9 km/h) and ship them
 gains: setup

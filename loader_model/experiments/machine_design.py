@@ -28,7 +28,8 @@ step shortened, when
   (:func:`~loader_model.control.comfort_design.evaluate_gain`; the check asks only for a stable
   loop on the drawn plants, the margin keeps the design off that edge), or K leaves the
   settings' range;
-- a scenario's run has a persistent oscillation after the road, or its pump command or
+- a scenario's run has a persistent oscillation after the road (above twice the level the
+  gains keep at rest with the sensors' noise, as the check judges it), or its pump command or
   displacement rate at their limits for longer than the envelope allows
   (:mod:`~loader_model.simulation.settling`);
 - a scenario's a_total exceeds the baseline's by more than the envelope allows, unless the start
@@ -51,6 +52,7 @@ from loader_model.experiments.design_check.runs import (
     condition_course,
     condition_plant,
     condition_scenario,
+    rest_level,
 )
 from loader_model.experiments.stable_start import nearest_stable_gain
 
@@ -208,7 +210,10 @@ class _Problem:
             self.simulations += 1
             plant = scenario.plant
             duty = limit_duty(run.columns, plant.parameter("V_p_max"), plant.parameter("Vd_p_max"))
-            if settle_measure(run.time_s, run.columns).persistent:
+            settle = settle_measure(run.time_s, run.columns)
+            if settle.persistent and settle.persistent_above(
+                rest_level(design, self.envelope, condition.load)  # only where it matters
+            ):
                 return f"{condition.label}: persistent oscillation after the road"
             if duty.command > self.envelope.command_duty or duty.rate > self.envelope.rate_duty:
                 return (

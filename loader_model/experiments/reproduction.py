@@ -133,6 +133,9 @@ def build_reproduction(folder: Path, options: ReportOptions) -> dict[str, object
         shipped_budget,
     )
     from loader_model.experiments.machine_report import machine_rows
+    from loader_model.experiments.scatter import PAPER_TRIALS
+    from loader_model.experiments.scatter_report import scatter_section
+    from loader_model.experiments.scatter_study import shipped_scatter
     from loader_model.experiments.summary import summary_section
     from loader_model.experiments.table6 import run_trials, table6_cells
     from loader_model.experiments.tables import (
@@ -203,6 +206,12 @@ def build_reproduction(folder: Path, options: ReportOptions) -> dict[str, object
     tables["comfort"] = comfort_rows(outcomes, (*CONTROLLERS, *DESIGNED_CONTROLLERS))
     budget = shipped_budget()
     budget_text, budget_tables = budget_section(budget)
+    four = None
+    if options.trials == PAPER_TRIALS:
+        four = {(c.speed_kmh, c.load, c.controller): c.model.change_percent for c in paper_cells}
+    scatter_text, scatter_table = scatter_section(shipped_scatter(), four, options.seed)
+    if scatter_table is not None:
+        tables["scatter"] = scatter_table
     tables.update(budget_tables)
     trial_rows: Rows = [
         [
@@ -253,6 +262,7 @@ def build_reproduction(folder: Path, options: ReportOptions) -> dict[str, object
         (budget_text, budget),
         appendix,
         (summary, notes),
+        scatter_text,
     )
     (folder / "report.md").write_text(text, encoding="utf-8")
     return {
@@ -264,7 +274,7 @@ def build_reproduction(folder: Path, options: ReportOptions) -> dict[str, object
     }
 
 
-def _markdown(options, tables, fidelity, lifts, timings, budget, appendix, summary) -> str:
+def _markdown(options, tables, fidelity, lifts, timings, budget, appendix, summary, scatter) -> str:
     from loader_model.experiments.discrepancies import discrepancy_section
     from loader_model.experiments.machine_report import machine_section
 
@@ -301,6 +311,7 @@ def _markdown(options, tables, fidelity, lifts, timings, budget, appendix, summa
         "A(8) = 0.5 m/s² is reached (Directive 2002/44/EC; ISO 2631-1's health weighting, "
         "the larger of 1.4 a_wx and a_wz). The summary gives ISO 2631-1 Annex C's comfort reactions.\n",
         markdown_table(tables["comfort"]) + "\n",
+        scatter,
         budget[0],
         "## Figures\n",
         *_figure_section(notes),

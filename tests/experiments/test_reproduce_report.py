@@ -37,8 +37,9 @@ def test_reproduce_writes_a_complete_report(tmp_path: Path, capsys) -> None:
     assert len(designed) == 5 and "Beyond the paper" in text
     trials = (target / "trials.csv").read_text().strip().splitlines()
     assert len(trials) == 1 + 2 * 2 * 8 * 2  # 4 controllers of the paper + printed + 3 designed
-    for name in ("comfort", "fidelity_budget", "calibrated_values", "uncertainty"):
+    for name in ("comfort", "fidelity_budget", "calibrated_values", "uncertainty", "scatter"):
         assert (target / f"{name}.csv").is_file(), name
+    assert "## Scatter: the model's trial-to-trial spread beside the paper's" in text
     assert "A second machine: the compact wheel loader" in text
     assert "Fidelity budget: one modelling step at a time" in text
     assert "The bound: what the pump could do" in text

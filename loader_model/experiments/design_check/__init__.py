@@ -40,7 +40,13 @@ from loader_model.experiments.design_check.margins import (
     sampled_margins,
 )
 from loader_model.experiments.design_check.margins import sampled_plants as sampled_plants_of
-from loader_model.experiments.design_check.runs import COMPARED, Design, RunOutcome, run_condition
+from loader_model.experiments.design_check.runs import (
+    COMPARED,
+    Design,
+    RunOutcome,
+    rest_level,
+    run_condition,
+)
 from loader_model.experiments.design_check.verdict import (
     ConditionCheck,
     DesignCheck,
@@ -157,8 +163,9 @@ def check_design(
             runs = [found[condition] for condition in conditions]
     finally:
         bar.close()
+    rest = {load: rest_level(design, envelope, load) for load in envelope.loads}
     checks = tuple(
-        judge_condition(condition, outcome, envelope)
+        judge_condition(condition, outcome, envelope, rest[condition.load])
         for condition, outcome in zip(conditions, runs, strict=True)
     )
-    return DesignCheck(design, envelope, checks, margins)
+    return DesignCheck(design, envelope, checks, margins, rest)

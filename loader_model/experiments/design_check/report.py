@@ -67,6 +67,18 @@ def _margin_lines(check: DesignCheck) -> list[str]:
     return lines
 
 
+def _rest_lines(check: DesignCheck) -> list[str]:
+    from loader_model.simulation.settling import REST_NOISE_FACTOR
+
+    if not check.rest_rms:
+        return []
+    levels = ", ".join(f"{load} {value:.3f}" for load, value in check.rest_rms.items())
+    return [
+        f"at rest on flat ground with the sensors' noise alone: pitch acceleration {levels} "
+        f"rad/s² r.m.s. (motion after the road counts from {REST_NOISE_FACTOR:g} times this)"
+    ]
+
+
 def _verdict_lines(check: DesignCheck) -> list[str]:
     judged = sum(c.judged for c in check.conditions)
     head = (
@@ -91,6 +103,7 @@ def check_text(check: DesignCheck) -> str:
     ]
     lines += ["  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)) for r in rows]
     lines += ["Linearised loop:", *(f"  {line}" for line in _margin_lines(check))]
+    lines += [line[0].upper() + line[1:] for line in _rest_lines(check)]
     return "\n".join([*lines, *_verdict_lines(check)])
 
 
@@ -99,7 +112,7 @@ def check_markdown(check: DesignCheck) -> str:
     header = [c.replace("|", "/") for c in _COLUMNS]
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     lines += ["| " + " | ".join(_row(c)) + " |" for c in check.conditions]
-    lines += ["", *(f"- {line}" for line in _margin_lines(check)), ""]
+    lines += ["", *(f"- {line}" for line in [*_margin_lines(check), *_rest_lines(check)]), ""]
     lines += [_verdict_lines(check)[0], ""]
     lines += [f"- {reason}" for reason in check.failures]
     lines += [f"- not judged: {reason}" for reason in check.not_judged]

@@ -16,6 +16,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
 from loader_model.experiments.design_check.envelope import COURSE_PREFIX, Condition, Envelope
 
 if TYPE_CHECKING:
@@ -149,6 +151,28 @@ def condition_course(condition: Condition, envelope: Envelope) -> Any:
         seed=condition.seed,
         settle_s=envelope.settle_s,
     )
+
+
+def rest_level(design: Design, envelope: Envelope, load: str) -> float:
+    """The pitch acceleration [rad/s²] r.m.s. the design keeps at rest: its last second on flat
+    ground, driven only by the Table 6 trials' sensor noise (seed 0), after the settle window
+    and 2 s more (:func:`~loader_model.simulation.settling.settle_measure`)."""
+    from loader_model.control.sensors import SensorModel
+    from loader_model.experiments.trials import TRIAL_SENSOR_NOISE
+    from loader_model.simulation.courses import LEAD_IN_M, Course, kmh_to_m_s
+    from loader_model.simulation.roads import RoadProfile
+    from loader_model.simulation.settling import settle_measure
+    from loader_model.simulation.simulator import course_input, simulate
+
+    flat = RoadProfile(np.array([0.0, 1.0]), np.zeros(2), "flat ground")
+    course = Course(flat, kmh_to_m_s(5.0), -LEAD_IN_M, envelope.settle_s + 2.0, "flat ground")
+    scenario = condition_scenario(design, load, "design")
+    result = simulate(
+        course_input(course, scenario),
+        scenario,
+        sensors=SensorModel(noise_std=TRIAL_SENSOR_NOISE, seed=0),
+    )
+    return float(settle_measure(result.time_s, result.columns).tail_rms)
 
 
 def _outcome(result: Any, plant: PlantScenario, stopped: str = "") -> RunOutcome:
