@@ -54,6 +54,7 @@ from loader_model.experiments.design_check.runs import (
     condition_scenario,
     rest_level,
 )
+from loader_model.experiments.design_check.verdict import MARGIN_RTOL
 from loader_model.experiments.stable_start import nearest_stable_gain
 
 __all__ = [
@@ -188,7 +189,7 @@ class _Problem:
         except ValueError as error:  # outside the settings' range
             return f"outside the settings' range: {error}"
         worst = min(e.loop_margin for e in evaluate_gain(self.plants, gain.reshape(1, 4)))
-        if worst < self.margin:
+        if worst < self.margin * (1.0 - MARGIN_RTOL):  # as the check judges it
             return f"linearised loop margin {worst:.3f} rad/s below {self.margin:g}"
         if self.sampled:
             sampled = min(e.loop_margin for e in evaluate_gain(self.sampled, gain.reshape(1, 4)))
@@ -232,11 +233,12 @@ class _Problem:
 
 
 def _stable_start(given: np.ndarray, plants: list[Any], margin: float) -> np.ndarray:
-    """``given`` if its loop keeps ``margin`` on ``plants``; else the nearest gain that keeps
+    """``given`` if its loop keeps ``margin`` on ``plants`` (as the check judges it: the linear
+    design's optimum lies on the margin itself); else the nearest gain that keeps
     :data:`START_MARGIN_FACTOR` times it (or the margin itself where that is out of reach)."""
     from loader_model.experiments.stable_start import loop_margin
 
-    if loop_margin(plants, given) >= margin:
+    if loop_margin(plants, given) >= margin * (1.0 - MARGIN_RTOL):  # the check's tolerance
         return given
     try:
         return nearest_stable_gain(given, plants, START_MARGIN_FACTOR * margin).ravel()
