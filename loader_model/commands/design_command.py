@@ -224,8 +224,9 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
     if args.method == "refine":
         designed, course_note = refine_step(args, designed, loads, params, machine)
         label = "refined on the course"
+    check = None
     if args.method == "machine":
-        designed, course_note = machine_step(args, designed, machine)
+        designed, course_note, check = machine_step(args, designed, machine, envelope)
         label = "designed on the machine"
     final = designed if designed is not None else next(iter(lqr.values()))
     print(
@@ -246,7 +247,7 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
             f"within limits: {e.within_limits}\n    {listed}"
         )
     settings = designed_settings(final, machine)
-    verdict, code = check_step(args, settings, machine, envelope)
+    verdict, code = check_step(args, settings, machine, envelope, check)
     if args.output is not None and (code == 0 or args.force):
         import datetime
 

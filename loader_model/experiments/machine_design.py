@@ -157,12 +157,14 @@ class _Problem:
         margin: float,
         sampled: int,
         study: str | None,
+        extra_conditions: tuple[Condition, ...] = (),
     ):
         from loader_model.control.comfort_design import comfort_plants
         from loader_model.experiments.design_check.margins import sampled_plants
 
         self.machine, self.params, self.envelope, self.margin = machine, params, envelope, margin
         self.conditions = list(envelope.conditions())
+        self.conditions += [c for c in extra_conditions if c not in self.conditions]
         probe = Design(_settings(np.zeros(4), machine), "skyhook", machine, params)
         self.baseline = _baselines(probe, envelope, self.conditions)
         nominal = None
@@ -257,6 +259,7 @@ def design_on_machine(
     progress: bool = True,
     sampled_plants: int = 16,
     study: str | None = None,
+    extra_conditions: tuple[Condition, ...] = (),
 ) -> MachineDesign:
     """Minimise J over ``envelope``'s scenarios from ``start_gain`` (module notes).
 
@@ -283,6 +286,9 @@ def design_on_machine(
         design check demands a stable loop on them).
     study : str, optional
         The study file they are drawn from (default: the shipped example for the skid-steer).
+    extra_conditions : tuple of Condition
+        Scenarios added to ``envelope``'s (for example the conditions a design check found
+        failing), driven with ``envelope``'s settle window and road length.
 
     Raises
     ------
@@ -298,7 +304,9 @@ def design_on_machine(
     ):
         raise ValueError(f"max_iterations = {max_iterations!r}; allowed: an integer >= 1")
     start_wall = time.perf_counter()
-    problem = _Problem(machine, params, envelope, float(margin), sampled_plants, study)
+    problem = _Problem(
+        machine, params, envelope, float(margin), sampled_plants, study, extra_conditions
+    )
     given = np.asarray(start_gain, dtype=float).ravel()
     if given.size != 4 or not np.all(np.isfinite(given)):
         raise ValueError(f"start_gain = {given.tolist()}; allowed: 4 finite gains")
