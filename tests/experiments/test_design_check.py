@@ -147,3 +147,22 @@ def test_a_margin_met_to_the_designs_tolerance_passes(decaying) -> None:
             any("linearised loop margin 0.0998 rad/s below 0.1" in f for f in check.failures)
             is fails
         )
+
+
+def test_a_design_that_does_not_hold_still_at_rest_fails(decaying) -> None:
+    """Noise alone can set off a limit cycle (a tractor with a front loader, full bucket: 6.2
+    rad/s² at rest with the pump at its limits): the run at rest then fails the design."""
+    import dataclasses
+
+    from loader_model.experiments.design_check.runs import holds_still
+
+    rest = decaying.rest["empty"]
+    assert holds_still(rest) and decaying.passed  # the refined gains hold still (measured)
+    cycling = dataclasses.replace(rest, tail_rms=6.2, command_duty=0.12, rate_duty=0.3)
+    assert not holds_still(cycling)
+    check = dataclasses.replace(decaying, rest={"empty": cycling})
+    assert check.failures == (
+        "empty, at rest with the sensors' noise alone: the pump at its limits (command 12.0%, "
+        "rate 30.0% of the run), pitch acceleration 6.200 rad/s² r.m.s.: the loop does not "
+        "hold still",
+    )

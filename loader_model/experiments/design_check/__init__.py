@@ -44,7 +44,8 @@ from loader_model.experiments.design_check.runs import (
     COMPARED,
     Design,
     RunOutcome,
-    rest_level,
+    holds_still,
+    rest_run,
     run_condition,
 )
 from loader_model.experiments.design_check.verdict import (
@@ -163,9 +164,10 @@ def check_design(
             runs = [found[condition] for condition in conditions]
     finally:
         bar.close()
-    rest = {load: rest_level(design, envelope, load) for load in envelope.loads}
+    rest = {load: rest_run(design, envelope, load) for load in envelope.loads}
+    floor = {load: run.tail_rms if holds_still(run) else 0.0 for load, run in rest.items()}
     checks = tuple(
-        judge_condition(condition, outcome, envelope, rest[condition.load])
+        judge_condition(condition, outcome, envelope, floor[condition.load])
         for condition, outcome in zip(conditions, runs, strict=True)
     )
     return DesignCheck(design, envelope, checks, margins, rest)

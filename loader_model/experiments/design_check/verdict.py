@@ -13,8 +13,10 @@ A condition fails, and the verdict names it and why, when the design's run
   :attr:`~.Envelope.tail_factor` times the baseline's. Either counts only above
   :data:`~loader_model.simulation.settling.REST_NOISE_FACTOR` times the level the design keeps
   at rest on flat ground with its sensors' noise alone
-  (:func:`~loader_model.experiments.design_check.runs.rest_level`, one run per load): that
-  much motion is the noise's, not the road's.
+  (:func:`~loader_model.experiments.design_check.runs.rest_run`, one run per load): that
+  much motion is the noise's, not the road's. The design fails when that run at rest drives
+  the pump to a limit: noise alone sets off a limit cycle (measured on a tractor with a front
+  loader: 6.2 rad/s² at rest with the full bucket), and its level then raises no floor.
 
 A condition whose baseline the simulator stopped is not judged (the road is outside what the
 model covers for this machine) and is listed as such. The design fails as well when the loop's
@@ -82,16 +84,21 @@ class DesignCheck:
         Every condition, in the envelope's order.
     margins : dict of str to LinearMargin
         The loop's stability per load (skyhook designs; empty for another controller).
-    rest_rms : dict of str to float
-        The pitch acceleration [rad/s²] the design keeps at rest with its sensors' noise, per
-        load (module notes).
+    rest : dict of str to RunOutcome
+        The design at rest on flat ground with its sensors' noise alone, per load (module
+        notes).
     """
 
     design: Design
     envelope: Envelope
     conditions: tuple[ConditionCheck, ...]
     margins: dict[str, LinearMargin]
-    rest_rms: dict[str, float] = field(default_factory=dict)
+    rest: dict[str, RunOutcome] = field(default_factory=dict)
+
+    @property
+    def rest_rms(self) -> dict[str, float]:
+        """The pitch acceleration [rad/s²] r.m.s. the design keeps at rest, per load."""
+        return {load: run.tail_rms for load, run in self.rest.items()}
 
     @property
     def failures(self) -> tuple[str, ...]:
@@ -108,6 +115,16 @@ class DesignCheck:
                 found.append(
                     f"{load}: loop unstable on {margin.sampled_unstable} of {margin.sampled} "
                     f"sampled plants (worst margin {margin.worst_sampled_rad_s:.3f} rad/s)"
+                )
+        for load, run in self.rest.items():
+            if run.stopped:
+                found.append(f"{load}, at rest with the sensors' noise alone: {run.stopped}")
+            elif run.command_duty > 0.0 or run.rate_duty > 0.0:
+                found.append(
+                    f"{load}, at rest with the sensors' noise alone: the pump at its limits "
+                    f"(command {run.command_duty:.1%}, rate {run.rate_duty:.1%} of the run), "
+                    f"pitch acceleration {run.tail_rms:.3f} rad/s² r.m.s.: the loop does not "
+                    "hold still"
                 )
         for check in self.conditions:
             found += [f"{check.condition.label}: {reason}" for reason in check.failures]
