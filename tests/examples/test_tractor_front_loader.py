@@ -138,3 +138,23 @@ def test_linear_design_is_refused_naming_the_full_bucket(
     for reason in ("against the baseline", "pump command at V_p,max", "persistent oscillation"):
         assert reason in reasons
     assert "FAILED: 4 finding(s) over 2 judged conditions" in out
+
+
+def test_table3_gains_fail_the_full_bucket_boards(machine_args, tmp_path: Path, capsys) -> None:
+    """Table 3's gains on the full bucket's boards at 9 km/h: worse than the baseline (measured
+    +13.4 %: 3.438 against 3.031 m/s²), but neither the pump at its limits nor an oscillation
+    that persists (the only finding is the comparison)."""
+    conditions = tmp_path / "conditions.toml"
+    conditions.write_text(
+        '[envelope]\nloads = ["full"]\nboard_speeds_kmh = [9.0]\nroad_classes = []\n'
+        "[criteria]\nsampled_plants = 0\n",
+        encoding="utf-8",
+    )
+    argv = ["check-design", "default", *machine_args, "--conditions", str(conditions)]
+    assert main([*argv, "--jobs", "1", "--no-progress"]) == EXIT_CHECK_FAILED
+    out = capsys.readouterr().out
+    row = next(line.split() for line in out.splitlines() if line.startswith("full, boards"))
+    assert row[-1] == "FAIL" and float(row[7]) > 5.0  # change [%], measured +13.4
+    assert float(row[9]) == 0.0 and float(row[10]) == 0.0  # the pump never at its limits
+    assert "FAILED: 1 finding(s) over 1 judged conditions" in out
+    assert "  - full, boards 9 km/h: a_total " in out
