@@ -96,8 +96,9 @@ def test_static_piston_pressure_equals_the_hand_calculation(
 
 
 def test_full_bucket_lifts_the_rear_axle_at_the_first_board(machine_args, capsys) -> None:
-    """4 s of the paper course at 9 km/h, baseline: the rear tyres leave the ground once (the
-    first board reaches the rear axle at 3.06 s; measured 3.055-3.286 s)."""
+    """4 s of the paper course at 9 km/h, baseline: the rear tyres leave the ground once, as
+    they ride over the first board (they meet it at 2.90 s; measured off the ground from 3.055
+    to 3.286 s)."""
     argv = ["simulate", *machine_args, "--load", "full", "--duration", "4"]
     assert main(argv) == 0
     out = capsys.readouterr().out
