@@ -113,7 +113,8 @@ def test_linear_design_is_refused_naming_the_full_bucket(
     boards at 9 km/h: the empty bucket passes (measured −9.4 %), the full bucket fails
     (measured +77.7 %, the command at V_p,max 20.0 % and the rate 40.5 % of the run, a 5.3 Hz
     pitch oscillation of 9.1 rad/s² r.m.s. left in the last second against the baseline's
-    0.84); nothing is written."""
+    0.84; at rest with the sensors' noise alone the pump reaches its limits too); nothing is
+    written."""
     conditions = tmp_path / "conditions.toml"
     conditions.write_text(
         '[envelope]\nloads = ["empty", "full"]\nboard_speeds_kmh = [9.0]\nroad_classes = []\n'
@@ -136,9 +137,18 @@ def test_linear_design_is_refused_naming_the_full_bucket(
     assert float(full[9]) > 10.0 and float(full[10]) > 20.0  # duty [%], measured 20.0, 40.5
     assert float(full[12]) > 5.0 * float(full[14])  # residual pitch, measured 9.120 / 0.840
     failures = [line for line in out.splitlines() if line.startswith("  - ")]
-    assert all(line.startswith("  - full, boards 9 km/h: ") for line in failures)
+    # at rest on flat ground, the sensors' noise alone sets the pump at its limits (measured:
+    # command 0.3 %, rate 1.3 % of the run), so the oscillation after the boards is judged
+    # against the fixed floor and is persistent
+    assert failures[0].startswith("  - full, at rest with the sensors' noise alone: the pump")
+    assert all(line.startswith("  - full, boards 9 km/h: ") for line in failures[1:])
     reasons = " ".join(failures)
-    for reason in ("against the baseline", "pump command at V_p,max", "rate at its limit"):
+    for reason in (
+        "against the baseline",
+        "pump command at V_p,max",
+        "rate at its limit",
+        "persistent oscillation after the road",
+    ):
         assert reason in reasons
     assert "finding(s) over 2 judged conditions" in out
 
