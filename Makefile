@@ -11,7 +11,7 @@ PIP_QUIET := --quiet --disable-pip-version-check
 TEST_WORKERS ?= 2
 PYTEST_PARALLEL := -n $(TEST_WORKERS) --dist loadscope
 
-.PHONY: setup lock regenerate calibrate calibrate-table6 fidelity scatter gains bound lint test test-slow bench reproduce docs clean
+.PHONY: setup lock regenerate calibrate calibrate-table6 fidelity scatter gains designs bound lint test test-slow bench reproduce docs clean
 
 $(STAMP): pyproject.toml $(LOCK)
 	$(PYTHON) -m venv $(VENV)
@@ -79,6 +79,14 @@ scatter: setup
 ## gains: refine the skyhook gains on the nonlinear paper course (both loads, 9 km/h) and ship them
 gains: setup
 	$(VENV)/bin/loader-model design --method refine --evaluations 150 --output loader_model/data/controller_refined.toml
+
+## designs: each shipped machine's skyhook gains designed on the nonlinear machine and their design
+## check, shipped for the report (about 10 minutes; a slow test checks that they still pass)
+designs: setup
+	$(VENV)/bin/loader-model design --method machine --start loader_model/data/controller_refined.toml --no-progress --output loader_model/data/controller_machine.toml
+	$(VENV)/bin/loader-model check-design loader_model/data/controller_machine.toml --no-progress --output loader_model/data/design_check_skid_steer.md
+	$(VENV)/bin/loader-model design --machine compact_wheel_loader --method machine --no-progress --output loader_model/data/controller_machine_compact_wheel_loader.toml
+	$(VENV)/bin/loader-model check-design loader_model/data/controller_machine_compact_wheel_loader.toml --machine compact_wheel_loader --no-progress --output loader_model/data/design_check_compact_wheel_loader.md
 
 ## bound: the bound for the four Table 6 conditions, shipped for the report (a slow test checks it)
 bound: setup

@@ -275,6 +275,7 @@ def build_reproduction(folder: Path, options: ReportOptions) -> dict[str, object
 
 
 def _markdown(options, tables, fidelity, lifts, timings, budget, appendix, summary, scatter) -> str:
+    from loader_model.experiments.check_report import check_section
     from loader_model.experiments.discrepancies import discrepancy_section
     from loader_model.experiments.machine_report import machine_section
 
@@ -343,6 +344,7 @@ def _markdown(options, tables, fidelity, lifts, timings, budget, appendix, summa
         "the nominal 9 km/h course (both loads), so their 9 km/h rows are not an independent "
         "test; the 18 km/h rows are.\n",
         markdown_table(tables["designed"]) + "\n",
+        check_section(),
         discrepancy_section(tables, within, count, lifts, budget[1]),
         *(section + "\n" for section in appendix),
         machine_section(tables),
