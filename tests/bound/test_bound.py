@@ -70,6 +70,8 @@ def test_linear_model_at_zero_command_is_close_to_the_simulator(plant, road, pro
     assert linear == pytest.approx(nonlinear, rel=0.05)
 
 
+# slow: 5.4 s (a bound playback over the course)
+@pytest.mark.slow
 def test_playback_of_the_static_command_is_the_baseline(plant, road, problem):
     table = np.full(problem.intervals, plant.u0)
     played = replay(plant, road, table, problem.hold_periods)

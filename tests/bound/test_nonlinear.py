@@ -106,6 +106,8 @@ def test_rollout_is_the_simulators_replay(plant, road, problem):
     assert np.max(np.abs(ours - theirs)) <= 1e-9 * np.max(np.abs(theirs))
 
 
+# slow: 7.5 s (a rollout with refined periods against the simulator's)
+@pytest.mark.slow
 def test_rollout_refines_the_periods_the_simulator_refines(plant, road, monkeypatch):
     """With the step-error limit below zero both the bound's rollout and the simulator refine
     every period (integrate it again with 16 substeps): over 0.05 s their seat samples are

@@ -123,6 +123,8 @@ def test_interrupted_reproduce_says_so_in_one_line(tmp_path: Path, commands, num
     assert list((tmp_path / "out").iterdir()) == []
 
 
+# slow: 7 s (a reproduce killed and run again; SIGINT and SIGTERM stay in the fast suite)
+@pytest.mark.slow
 def test_killed_reproduce_leaves_no_process_and_the_next_run_cleans_up(
     tmp_path: Path, commands
 ) -> None:

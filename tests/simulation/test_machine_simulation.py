@@ -36,6 +36,8 @@ def test_course_runs_valid_and_finite(controller: str) -> None:
     assert 0.5 < total < 20.0
 
 
+# slow: 6.5 s (the wheel loader's four controllers over a course)
+@pytest.mark.slow
 def test_comparison_rows() -> None:
     rows = compare_controllers(MACHINE, None, "full", course=paper_course(9.0))
     assert [row.controller for row in rows] == [

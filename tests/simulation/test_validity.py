@@ -109,6 +109,8 @@ def test_bad_validity_arguments_are_refused() -> None:
         validity_bounds(ahead)
 
 
+# slow: 6 s (a whole course run twice)
+@pytest.mark.slow
 def test_a_valid_run_is_not_changed_by_the_check() -> None:
     """The default bounds and bounds no run reaches give the same numbers, bit for bit."""
     params = plant_parameter_vector(None, "empty")
