@@ -20,9 +20,9 @@ __all__ = ["PLOT_SUFFIXES", "plot_seat"]
 PLOT_SUFFIXES = (".png", ".pdf", ".svg")
 
 _PANELS = (
-    ("f_Px", "seat pad x: f_Px − f_Px(0) (m/s²)"),
-    ("f_Py", "seat pad vertical: f_Py − g (m/s²)"),
-    ("thetadd_1", "pitch: θ̈1 (rad/s²)"),
+    ("f_Px", "seat pad x\nf_Px − f_Px(0) (m/s²)"),
+    ("f_Py", "seat pad vertical\nf_Py − g (m/s²)"),
+    ("thetadd_1", "pitch\nθ̈1 (rad/s²)"),
 )
 #: The chassis signal drawn beside each pad signal (the seat's base S).
 _CHASSIS = {"f_Px": "f_Sx", "f_Py": "f_Sy"}
