@@ -14,13 +14,12 @@ SymPy dependency); the structural parameter order is :func:`structural_parameter
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from derive.description_checks import DescriptionError, check_entries, read_description, shown
-from derive.description_keys import KEYS, closest, parameter_names_problem
+from derive.description_checks import DescriptionError, check_entries, read_description
+from derive.description_keys import KEYS, parameter_names_problem
 
 __all__ = [
     "MACHINES_DIR",
@@ -30,7 +29,6 @@ __all__ = [
     "Machine",
     "ParameterInfo",
     "available_machines",
-    "check_values",
     "load_machine",
     "static_load_parameters",
     "structural_parameters",
@@ -379,49 +377,3 @@ def load_machine(source: str | Path) -> Machine:
 def available_machines() -> tuple[str, ...]:
     """Names of the described machines (``derive/machines/*.toml``), sorted."""
     return tuple(sorted(path.stem for path in MACHINES_DIR.glob("*.toml")))
-
-
-def check_values(machine: Machine, values: dict[str, dict[str, Any]]) -> None:
-    """Check a flat parameter set ``{name: {value, unit, source}}`` against ``machine``.
-
-    The static loads (:func:`static_load_parameters`) may be left out.
-
-    Raises
-    ------
-    DescriptionError
-        For a missing or unknown name (a misspelt one: with the closest name and those still
-        missing), a wrong unit, a value outside the range, no source.
-    """
-    where = f"values for {machine.name}"
-    known = {item.name: item for item in machine.parameters}
-    loads = static_load_parameters(machine)
-    for name in values:
-        if name not in known:
-            left = [n for n in known if n not in values and n not in loads]
-            guess = closest(name, left) or closest(name, known)
-            hint = f" (did you mean {guess!r}?)" if guess else ""
-            missing = f"; missing: {', '.join(left)}" if left else ""
-            raise DescriptionError(where, name, f"not a parameter of the machine{hint}{missing}")
-    for name, item in known.items():
-        if name not in values and name in loads:
-            continue  # computed at rest: the value given is not used
-        if name not in values:
-            raise DescriptionError(where, name, "missing")
-        entry = values[name]
-        if not isinstance(entry, dict):
-            raise DescriptionError(where, name, f"{shown(entry)}: give {{ value, unit, source }}")
-        value = entry.get("value")
-        if (
-            isinstance(value, bool)
-            or not isinstance(value, int | float)
-            or not math.isfinite(value)
-        ):
-            raise DescriptionError(where, f"{name}.value", f"{shown(value)}: give a finite number")
-        if entry.get("unit") != item.unit:
-            raise DescriptionError(
-                where, f"{name}.unit", f"{shown(entry.get('unit'))}, expected {item.unit!r}"
-            )
-        if not isinstance(entry.get("source"), str) or not entry["source"]:
-            raise DescriptionError(where, f"{name}.source", "missing source")
-        if item.range is not None and not item.range[0] <= value <= item.range[1]:
-            raise DescriptionError(where, f"{name}.value", f"{value} outside {item.range}")

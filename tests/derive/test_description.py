@@ -14,9 +14,9 @@ from derive.description import (
     MACHINES_DIR,
     DescriptionError,
     available_machines,
-    check_values,
     load_machine,
 )
+from derive.description_values import check_values
 
 SKID_STEER = (MACHINES_DIR / "skid_steer.toml").read_text(encoding="utf-8")
 

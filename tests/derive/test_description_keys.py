@@ -16,10 +16,10 @@ from derive.__main__ import main as derive_main
 from derive.description import (
     MACHINES_DIR,
     DescriptionError,
-    check_values,
     load_machine,
     static_load_parameters,
 )
+from derive.description_values import check_values
 
 WHEEL_LOADER = (MACHINES_DIR / "compact_wheel_loader.toml").read_text(encoding="utf-8")
 #: A declaration of a static load, F_<axle>y0 or F_<element>0, one line in [parameters].

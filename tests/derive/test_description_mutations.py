@@ -6,7 +6,7 @@ values file line by line: a value (also inside an inline table) replaced by any 
 duplicated or swapped, raw bytes put in. Each mutant is checked without deriving: by
 :func:`derive.description.load_machine` (then :func:`~derive.description.structural_parameters`),
 the runtime's :func:`~loader_model.machines.resolve_machine_name`, and for values by
-:func:`~derive.description.check_values` and the runtime's parameter reader. Allowed outcomes: a
+:func:`~derive.description_values.check_values` and the runtime's parameter reader. Allowed outcomes: a
 ``ValueError`` of one line that names the file, or a machine; never another exception, and no
 file is written beside the mutant.
 """
@@ -27,10 +27,10 @@ from derive.description import (
     MACHINES_DIR,
     DescriptionError,
     available_machines,
-    check_values,
     load_machine,
     structural_parameters,
 )
+from derive.description_values import check_values
 from loader_model.machines import resolve_machine_name
 from loader_model.parameters.machine_files import load_machine_parameters
 
