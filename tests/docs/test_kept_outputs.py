@@ -1,0 +1,207 @@
+"""The outputs and figures the guide's pages show come from files the repository keeps.
+
+Beside the tutorial (``test_tutorial_blocks.py``) and the Table 6 quotations
+(``test_quoted_numbers.py``), the guide shows outputs of ``check-design``, ``simulate``,
+``identify``, ``preview``, ``bound --bound constrained`` and the quick benchmark. Each is kept
+whole in ``docs/measurements/`` (:data:`SHOWN`), its first line saying the command, the date and
+the machine; every line a page shows after the command must be a line of the kept file (a line
+shortened with "…" must hold its pieces in order). Figures quoted in the pages' prose are rebuilt
+from the kept outputs and from shipped result files (``loader_model/data``) at the page's
+rounding (:func:`quotations`). Cheap: it reads files only.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from tests.docs.test_tutorial_blocks import is_excerpt, shown_outputs
+
+ROOT = Path(__file__).resolve().parents[2]
+KEPT = ROOT / "docs" / "measurements"
+DATA = ROOT / "loader_model" / "data"
+MINUS = "\u2212"
+#: (page, the last command of a shell block followed by its output) -> the kept output.
+SHOWN = {
+    ("design_check.md", "loader-model check-design default --conditions env.toml --no-progress"): (
+        "check_my_yard.txt"
+    ),
+    ("simulation.md", "loader-model simulate --course docs/examples/my_yard.toml --speed 9"): (
+        "simulate_my_yard.txt"
+    ),
+    (
+        "simulation.md",
+        "loader-model simulate --course docs/examples/my_yard.toml --speed 9 --load full --compare",
+    ): "simulate_my_yard_full.txt",
+    ("identification.md", "loader-model identify friction friction.csv"): "identify_friction.txt",
+    ("bound.md", "loader-model preview --no-progress"): "preview_9kmh_empty.txt",
+    ("bound.md", "loader-model bound --bound constrained --no-progress"): (
+        "bound_constrained_9kmh_empty.txt"
+    ),
+    ("performance.md", ".venv/bin/python docs/measurements/bench_quick.py"): "bench_quick.txt",
+}
+HEADER = re.compile(r"^# .+ \| \d{4}-\d\d-\d\d \| \d+-core .+, shared with other jobs")
+
+
+def page(name: str) -> str:
+    return (ROOT / "docs" / "guide" / name).read_text(encoding="utf-8")
+
+
+def kept(name: str) -> str:
+    return (KEPT / name).read_text(encoding="utf-8")
+
+
+def minus(text: str) -> str:
+    """``text`` with ASCII hyphen-minus signs as the pages write them (U+2212)."""
+    return text.replace("-", MINUS)
+
+
+@pytest.mark.parametrize(("name", "command"), sorted(SHOWN), ids=lambda v: v[:40])
+def test_shown_output_is_an_excerpt_of_the_kept_one(name: str, command: str) -> None:
+    shown = dict(shown_outputs(page(name)))
+    assert command in shown, f"{name} shows no output after `{command}`"
+    text = kept(SHOWN[name, command])
+    assert HEADER.match(text), f"{SHOWN[name, command]}: first line must say command, date, machine"
+    missing = is_excerpt(shown[command], text)
+    assert not missing, f"{name}: lines not in {SHOWN[name, command]}: {missing}"
+
+
+@pytest.mark.parametrize("name", sorted({name for name, _ in SHOWN}))
+def test_every_shown_output_has_a_kept_file(name: str) -> None:
+    commands = {command for command, _ in shown_outputs(page(name))}
+    assert commands <= {c for n, c in SHOWN if n == name}, commands
+
+
+def _gains(text: str) -> list[float]:
+    return [
+        float(v) for v in re.search(r"^k_fb = \{ value = \[([^\]]+)\]", text, re.M)[1].split(",")
+    ]
+
+
+def _check_table(name: str) -> tuple[dict[str, list[str]], list[str]]:
+    """A shipped design check (Markdown): its rows by condition, and its other lines."""
+    rows, other = {}, []
+    for line in (DATA / name).read_text(encoding="utf-8").splitlines():
+        cells = [c.strip() for c in line.strip("|").split("|")]
+        if line.startswith("| ") and cells[0] != "condition":
+            rows[cells[0]] = cells
+        elif not line.startswith("|"):
+            other.append(line)
+    return rows, other
+
+
+def _design_check_quotations() -> list[tuple[str, str]]:
+    quotes = []
+    refined = _gains((DATA / "controller_refined.toml").read_text(encoding="utf-8"))
+    machine_file = (DATA / "controller_machine.toml").read_text(encoding="utf-8")
+    machine = _gains(machine_file)
+    quotes.append("K_fb = (" + ", ".join(minus(f"{g:.2f}") for g in refined) + ")")
+    quotes.append(
+        "to K_fb = (" + ", ".join(minus(f"{g:.2f}") for g in machine[:3]) + f", {machine[3]:.3f})"
+    )
+    j = re.search(r"J (\d\.\d+) -> (\d\.\d+)", machine_file)
+    quotes.append(f"lowers J from {float(j[1]):.3f} to {float(j[2]):.3f}")
+    margin = re.search(r"worst margin (-\d\.\d+) rad/s", kept("tutorial/check_refined.txt"))[1]
+    quotes.append(f"(margin {minus(f'{float(margin):.2f}')} rad/s)")
+    rows, other = _check_table("design_check_skid_steer.md")
+    change = {k: float(r[4]) for k, r in rows.items()}
+    boards = [v for k, v in change.items() if "boards" in k]
+    quotes.append(f"every condition {-max(change.values()):.1f} % to {-min(change.values()):.1f} %")
+    quotes.append(f"(the boards {-max(boards):.1f} % to {-min(boards):.1f} %)")
+    limit = max(max(float(r[6]), float(r[7])) for r in rows.values())
+    quotes.append(f"at a limit for more than {limit:.1f} % of the run")
+    text = "\n".join(other)
+    empty, full = re.findall(r"loop margin (\d\.\d{3}) rad/s", text)
+    worst = min(float(v) for v in re.findall(r"worst margin (\d\.\d{3}) rad/s", text))
+    quotes.append(f"the loop's margin {empty} / {full} rad/s")
+    quotes.append(f"at least {worst:.3f} rad/s on the sampled ones")
+    closest = sorted(change, key=change.get, reverse=True)[:2]
+    assert closest == ["empty, ISO D 30 km/h", "full, boards 9 km/h"], closest
+    quotes.append(
+        f"class D road at 30 km/h with the empty bucket ({minus(f'{change[closest[0]]:.1f}')} %)"
+    )
+    quotes.append(f"at 9 km/h with the full bucket ({minus(f'{change[closest[1]]:.1f}')} %)")
+    wheel = (DATA / "controller_machine_compact_wheel_loader.toml").read_text(encoding="utf-8")
+    j = re.search(r"J (\d\.\d+) -> (\d\.\d+) over (\d+) scenarios", wheel)
+    quotes.append(f"lowers J from {float(j[1]):.3f} to {float(j[2]):.3f} over {j[3]} scenarios")
+    rows, other = _check_table("design_check_compact_wheel_loader.md")
+    change = [float(r[4]) for r in rows.values()]
+    quotes.append(f"{len(rows)} conditions, {-max(change):.1f} % to {-min(change):.1f} % better")
+    text = "\n".join(other)
+    quotes.append("loop margins " + " / ".join(re.findall(r"loop margin (\d\.\d{3})", text)))
+    rest = re.search(r"pitch acceleration empty (\d\.\d{3}), full (\d\.\d{3})", text)
+    quotes.append(f"keeps {rest[1]} (empty) and {rest[2]} (full) rad/s²")
+    return [("design_check.md", q) for q in quotes]
+
+
+def _controllers_quotations() -> list[tuple[str, str]]:
+    rows = {}
+    for line in kept("tutorial/design.txt").splitlines():
+        match = re.match(
+            r"^  (.+?)\s+\[([^\]]+)\]\s+a_total empty: (\d\.\d+)\s+full: (\d\.\d+)", line
+        )
+        if match:
+            rows[match[1]] = (
+                [float(g) for g in match[2].split()],
+                float(match[3]),
+                float(match[4]),
+            )
+
+    def pair(name: str) -> str:
+        return f"{rows[name][1]:.3f} / {rows[name][2]:.3f}"
+
+    gains = ", ".join(minus(f"{g:.2f}") for g in rows["optimised (ISO 2631)"][0])
+    return [
+        ("controllers.md", f"k_φ = +0.22: {pair('Table 3 (k_φ = +0.22)')};"),
+        ("controllers.md", f"output-feedback LQR per load: {pair('LQR (empty)')} (designed"),
+        ("controllers.md", f"and {pair('LQR (full)')} (full)"),
+        ("controllers.md", f"({gains}): {pair('optimised (ISO 2631)')}, the lowest sum"),
+    ]
+
+
+def _bound_quotations() -> list[tuple[str, str]]:
+    passive_closed = re.search(r"^passive\s+(\d\.\d{4})", kept("tutorial/compare.txt"), re.M)[1]
+    passive_open = re.search(r"^passive\s+(\d\.\d{4})", kept("bound_9kmh_empty.txt"), re.M)[1]
+    quotes = [f"(passive: {float(passive_closed):.3f} there, {float(passive_open):.3f} here)"]
+    table = {}
+    for line in kept("preview_9kmh_empty.txt").splitlines():
+        match = re.match(
+            r"^\s+(\d\.\d\d)\s+(\d\.\d{4})\s+(?:not run|\d+\.\d{4})\s+(\d+\.\d\d)$", line
+        )
+        if match:
+            table[float(match[1])] = (float(match[2]), float(match[3]))
+    bound = float(
+        re.search(
+            r"non-causal LQ bound \(linear plant\)\s+(\d\.\d{4})", kept("preview_9kmh_empty.txt")
+        )[1]
+    )
+    half, one = (100.0 * (table[length][0] / bound - 1.0) for length in (0.5, 1.0))
+    quotes.append(f"within {half:.0f} % of the bound, 1 m within {one:.1f} %")
+    quotes.append(f"from {table[0.0][1]:.0f} to about {table[4.0][1]:.0f} times the pump's limit")
+    refined = re.search(
+        r"^skyhook-refined\s+(\d\.\d{4})\s+\S+\s+(\d\.\d\d)$",
+        kept("bound_constrained_9kmh_empty.txt"),
+        re.M,
+    )
+    assert float(refined[2]) > 1.0, "the page says the refined skyhook beats the constrained bound"
+    quotes.append(
+        f"the refined skyhook in the simulator ({float(refined[1]):.3f}) does better than the "
+        f"constrained linear bound (share {refined[2]})"
+    )
+    return [("bound.md", q) for q in quotes]
+
+
+def quotations() -> list[tuple[str, str]]:
+    """Every (page, quoted text) rebuilt from its kept output or shipped result file."""
+    return [*_design_check_quotations(), *_controllers_quotations(), *_bound_quotations()]
+
+
+def flat(text: str) -> str:
+    return " ".join(text.split())
+
+
+@pytest.mark.parametrize(("name", "quote"), quotations(), ids=lambda v: v[:50])
+def test_quoted_figure_matches_its_source(name: str, quote: str) -> None:
+    assert flat(quote) in flat(page(name)), f"{name} should quote, from its source: {quote!r}"
