@@ -207,6 +207,45 @@ def _performance_quotations() -> list[tuple[str, str]]:
     return [("performance.md", quote)]
 
 
+def _hydraulics_quotations() -> list[tuple[str, str]]:
+    empty, full = kept("hydraulics_empty.txt"), kept("hydraulics_full.txt")
+    wheel = kept("hydraulics_compact_wheel_loader.txt")
+
+    def pressure(text: str) -> str:
+        return re.search(r"static piston pressure p_A\s+(\d+\.\d\d) bar", text)[1]
+
+    def k_eq(text: str) -> str:
+        return re.search(r"k_eq \(chambers closed\)\s+(\S+) N/m", text)[1]
+
+    def dc_direct(text: str) -> str:
+        return re.search(r"direct p_A feedback: DC gain (\S+),", text)[1]
+
+    quotes = [
+        f"static piston pressure {pressure(empty)} bar (340 kg) and {pressure(full)} bar (770 kg) "
+        f"gauge, k_eq {k_eq(empty)} N/m",
+        f"positive DC gain ({dc_direct(empty)} with direct p_A feedback)",
+        "DC gain " + minus(re.search(r"Eq. 43: DC gain (\S+),", empty)[1]),
+        f"p_A {pressure(wheel)} bar, k_eq {k_eq(wheel)} N/m, pressure loop DC gain "
+        f"{dc_direct(wheel)} with direct p_A feedback",
+    ]
+    modes = re.findall(r"^    ((?:\d+\.\d\d/\d\.\d{3}(?:, )?)+)$", empty, re.M)
+    labels = (
+        "chambers closed (Eq. 28)",
+        "pump through open load-holding valves (virtual accumulator, skyhook)",
+        "closed load-holding valves, pump idle (baseline)",
+        "accumulator behind closed valves (passive, 50 bar precharge)",
+    )
+    rows = []
+    for label, line in zip(labels, modes, strict=True):
+        pairs = [m.split("/") for m in line.split(", ") if float(m.split("/")[0]) < 20.0]
+        rows.append(pairs)
+        quotes.append(f"| {label} | " + " | ".join(f"{f} / {z}" for f, z in pairs) + " |")
+    opened, closed = rows[1][1], rows[2][1]
+    quotes.append(f"The {opened[0]} Hz boom mode's damping of {opened[1]} with open valves")
+    quotes.append(f"the sealed oil column ({closed[1]})")
+    return [("hydraulics.md", q) for q in quotes]
+
+
 def quotations() -> list[tuple[str, str]]:
     """Every (page, quoted text) rebuilt from its kept output or shipped result file."""
     return [
@@ -214,6 +253,7 @@ def quotations() -> list[tuple[str, str]]:
         *_controllers_quotations(),
         *_bound_quotations(),
         *_performance_quotations(),
+        *_hydraulics_quotations(),
     ]
 
 
