@@ -246,6 +246,24 @@ def _hydraulics_quotations() -> list[tuple[str, str]]:
     return [("hydraulics.md", q) for q in quotes]
 
 
+def _machines_quotations() -> list[tuple[str, str]]:
+    quotes = []
+    for load, suffix in (("empty", ""), ("full", "_full")):
+        hydraulics = kept(f"hydraulics_compact_wheel_loader{suffix}.txt")
+        model = kept(f"model_compact_wheel_loader_{load}.txt")
+        p_a = re.search(r"static piston pressure p_A\s+(\d+\.\d\d) bar", hydraulics)[1]
+        force = re.search(r"static cylinder force\s+(\d+\.\d\d) kN", hydraulics)[1]
+        hold = re.search(r"pump displacement to hold\s+(\d+\.\d{3}) cm", hydraulics)[1]
+        tyres = [
+            float(re.search(rf"tyre load\s+F_{axle}y0\s+(\d+\.\d) N", model)[1]) / 1e3
+            for axle in ("A", "B")
+        ]
+        quotes.append(f"| {load} | {p_a} | {force} | {tyres[0]:.2f} / {tyres[1]:.2f} | {hold} |")
+    k_eq = re.search(r"k_eq \(chambers closed\)\s+(\S+) N/m", hydraulics)[1]
+    quotes.append(f"(k_eq = {k_eq.replace('e+0', 'e')} N/m)")
+    return [("machines.md", q) for q in quotes]
+
+
 def quotations() -> list[tuple[str, str]]:
     """Every (page, quoted text) rebuilt from its kept output or shipped result file."""
     return [
@@ -254,6 +272,7 @@ def quotations() -> list[tuple[str, str]]:
         *_bound_quotations(),
         *_performance_quotations(),
         *_hydraulics_quotations(),
+        *_machines_quotations(),
     ]
 
 
