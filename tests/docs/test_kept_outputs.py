@@ -12,6 +12,7 @@ rounding (:func:`quotations`). Cheap: it reads files only.
 
 from __future__ import annotations
 
+import csv
 import re
 from pathlib import Path
 
@@ -264,6 +265,29 @@ def _machines_quotations() -> list[tuple[str, str]]:
     return [("machines.md", q) for q in quotes]
 
 
+def _reproduction_quotations() -> list[tuple[str, str]]:
+    """The scatter study's table and means from ``loader_model/data/table6_scatter.csv``."""
+    lines = (DATA / "table6_scatter.csv").read_text(encoding="utf-8").splitlines()
+    rows = list(csv.DictReader(line for line in lines if not line.startswith("#")))
+    quotes = []
+    for speed, load in (("9", "empty"), ("9", "full"), ("18", "empty"), ("18", "full")):
+        cell = [r for r in rows if (r["speed_kmh"], r["load"]) == (speed, load)]
+        pooled = sorted(float(r["sd_pct"]) for r in cell)
+        own = sorted(float(r["sd_controller_pct"]) for r in cell)
+        quotes.append(
+            f"| {speed} km/h, {load} | {pooled[0]:.1f}-{pooled[-1]:.1f} | "
+            f"{float(cell[0]['sd_baseline_pct']):.1f} / {own[0]:.1f}-{own[-1]:.1f} |"
+        )
+    nine = {r["controller"]: r for r in rows if (r["speed_kmh"], r["load"]) == ("9", "empty")}
+    order = ("passive", "virtual-accumulator", "skyhook")
+    four = " / ".join(minus(f"{float(nine[c]['four_change_pct']):.1f}") for c in order)
+    many = " / ".join(f"{float(nine[c]['change_pct']):+.1f}" for c in order)
+    quotes.append(f"the report's four give {four} % at 9 km/h empty")
+    quotes.append(f"150 give {many} %")
+    quotes.append(f"at most {max(float(r['se_pp']) for r in rows):.1f} pp")
+    return [("reproduction.md", q) for q in quotes]
+
+
 def quotations() -> list[tuple[str, str]]:
     """Every (page, quoted text) rebuilt from its kept output or shipped result file."""
     return [
@@ -273,6 +297,7 @@ def quotations() -> list[tuple[str, str]]:
         *_performance_quotations(),
         *_hydraulics_quotations(),
         *_machines_quotations(),
+        *_reproduction_quotations(),
     ]
 
 
