@@ -38,6 +38,9 @@ SHOWN = {
     ): "simulate_my_yard_full.txt",
     ("identification.md", "loader-model identify friction friction.csv"): "identify_friction.txt",
     ("bound.md", "loader-model preview --no-progress"): "preview_9kmh_empty.txt",
+    ("bound.md", "loader-model preview --simulate --no-progress"): (
+        "preview_simulated_9kmh_empty.txt"
+    ),
     ("bound.md", "loader-model bound --bound constrained --no-progress"): (
         "bound_constrained_9kmh_empty.txt"
     ),
@@ -51,6 +54,8 @@ SHOWN = {
         "bound_constrained_9kmh_empty.txt"
     ),
 }
+#: (page, the last line of a python block followed by "prints" and its output) -> kept output.
+PRINTED = {("robustness.md", "print(report_text(study, table))"): "robustness_guide_study.txt"}
 HEADER = re.compile(r"^# .+ \| \d{4}-\d\d-\d\d \| \d+-core .+, shared with other jobs")
 
 
@@ -75,6 +80,23 @@ def test_shown_output_is_an_excerpt_of_the_kept_one(name: str, command: str) -> 
     assert HEADER.match(text), f"{SHOWN[name, command]}: first line must say command, date, machine"
     missing = is_excerpt(shown[command], text)
     assert not missing, f"{name}: lines not in {SHOWN[name, command]}: {missing}"
+
+
+def printed_outputs(text: str) -> dict[str, str]:
+    """The last line of each python block followed by a "prints" paragraph and a text block."""
+    gap = r"(?:(?!```).)*?"
+    pairs = re.findall(rf"```python\n(.*?)```\n\nprints{gap}```text\n(.*?)```", text, flags=re.S)
+    return {code.strip().splitlines()[-1]: output for code, output in pairs}
+
+
+@pytest.mark.parametrize(("name", "line"), sorted(PRINTED), ids=lambda v: v[:40])
+def test_printed_output_is_an_excerpt_of_the_kept_one(name: str, line: str) -> None:
+    shown = printed_outputs(page(name))
+    assert line in shown, f"{name} shows no output after the block ending in `{line}`"
+    text = kept(PRINTED[name, line])
+    assert HEADER.match(text), f"{PRINTED[name, line]}: first line must say command, date, machine"
+    missing = is_excerpt(shown[line], text)
+    assert not missing, f"{name}: lines not in {PRINTED[name, line]}: {missing}"
 
 
 @pytest.mark.parametrize("name", sorted({name for name, _ in SHOWN}))
@@ -198,6 +220,20 @@ def _bound_quotations() -> list[tuple[str, str]]:
     quotes.append(
         f"the refined skyhook in the simulator ({float(refined[1]):.3f}) does better than the "
         f"constrained linear bound (share {refined[2]})"
+    )
+    simulated = re.findall(
+        r"^\s+\d\.\d\d\s+\d\.\d{4}\s+(\d+\.\d{4})\s+\d+\.\d\d$",
+        kept("preview_simulated_9kmh_empty.txt"),
+        re.M,
+    )
+    with_preview = sorted(float(v) for v in simulated[1:])
+    text = kept("preview_simulated_9kmh_empty.txt")
+    baseline = float(re.search(r"baseline \(simulated\)\s+(\d\.\d{4})", text)[1])
+    refined = float(re.search(r"skyhook-refined \(simulated\)\s+(\d\.\d{4})", text)[1])
+    assert with_preview[0] > baseline > refined, "the page says every preview length ends above"
+    quotes.append(
+        f"({with_preview[0]:.2f} to {with_preview[-1]:.2f} m/s² against {baseline:.3f}) and "
+        f"the refined skyhook ({refined:.3f})"
     )
     sizes = {}
     for line in kept("bound_pump_sizing_9kmh_empty.txt").splitlines():
