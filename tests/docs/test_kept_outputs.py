@@ -368,3 +368,14 @@ def flat(text: str) -> str:
 @pytest.mark.parametrize(("name", "quote"), quotations(), ids=lambda v: v[:50])
 def test_quoted_figure_matches_its_source(name: str, quote: str) -> None:
     assert flat(quote) in flat(page(name)), f"{name} should quote, from its source: {quote!r}"
+
+
+def test_the_parameters_page_shows_what_its_block_prints(tmp_path, monkeypatch, capsys) -> None:
+    """The parameters page's block is cheap (no simulation): run it and compare its output."""
+    code, shown = re.search(
+        r"```python\n(.*?)```\n\nprints\n\n```text\n(.*?)```", page("parameters.md"), re.S
+    ).groups()
+    monkeypatch.chdir(tmp_path)
+    exec(compile(code, "parameters.md", "exec"), {"__name__": "__guide__"})
+    assert capsys.readouterr().out == shown
+    assert (tmp_path / "my_loader.toml").is_file()
