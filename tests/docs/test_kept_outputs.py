@@ -348,6 +348,59 @@ def _reproduction_quotations() -> list[tuple[str, str]]:
     return [("reproduction.md", q) for q in quotes]
 
 
+def _robustness_quotations() -> list[tuple[str, str]]:
+    """The shipped example study's report (``loader-model robustness``), per controller."""
+    report = kept("robustness_example_report.txt")
+    sections = dict(re.findall(r"^## (\S+)\n(.*?)(?=^## |\Z)", report, re.M | re.S))
+
+    def figures(name: str) -> dict[str, str]:
+        text = sections[name]
+        over_all, among = re.findall(r"(\d\.\d{3}) (?:over all|among the)", text)
+        return {
+            "mean": re.search(r"mean ([+-]\d+\.\d) %", text)[1].replace("-", MINUS),
+            "all": over_all,
+            "among": among,
+            "unstable": ([*re.findall(r"unstable on (\d+\.\d)% of the samples", text), ""])[0],
+            "limit": re.search(r"pump at its limit on (\d+\.\d)% of the runs", text)[1],
+            "evaluated": re.search(r"samples: 64: (\d+) evaluated, (\d+) unstable", text).groups(),
+            "ci": re.search(r"over all 64 samples.*?\(95 % CI (\S+)\)", text)[1],
+            "spearman": float(re.search(r"speed_kmh \(driven\) (-\d\.\d\d)", text)[1]),
+        }
+
+    rows = {name: figures(name) for name in sections}
+    labels = {
+        "passive": "passive",
+        "virtual-accumulator": "virtual accumulator",
+        "skyhook": "skyhook with Table 3",
+        "lqr": "output-feedback LQR",
+        "optimised": "optimised for the nominal loads",
+        "robust": "plants",
+    }
+    quotes = [f"{labels[n]} {rows[n]['mean']} % / {rows[n]['all']}" for n in labels]
+    lqr, optimised = rows["lqr"], rows["optimised"]
+    quotes.append(f"unstable on {lqr['unstable']} % of the samples, the pump at its limit in")
+    quotes.append(f"{lqr['limit']} % of the runs), optimised")
+    quotes.append(
+        f"loads {optimised['mean']} % / {optimised['all']} (unstable on {optimised['unstable']} %)"
+    )
+    for name in ("skyhook", "robust"):
+        assert rows[name]["evaluated"][1] == "0", f"the page says {name} is stable on every sample"
+    spearman = sorted(row["spearman"] for row in rows.values())
+    quotes.append(f"(Spearman {minus(f'{spearman[-1]:.2f}')} to {minus(f'{spearman[0]:.2f}')}:")
+    quotes.append(
+        f"unstable on the linearised plant of {lqr['evaluated'][1]} samples; filed as failures, the "
+        f"report gives a probability of worse comfort of {lqr['all']} (95 % CI {lqr['ci']}) over "
+        f"all 64 samples and {lqr['among']} among the {lqr['evaluated'][0]} evaluated, mean change "
+        f"{lqr['mean']} % over those {lqr['evaluated'][0]}"
+    )
+    quotes.append(
+        f"{optimised['evaluated'][1]} unstable, {optimised['all']} over all, {optimised['among']} "
+        f"among the {optimised['evaluated'][0]} evaluated"
+    )
+    quotes.append(f"stable on every sample ({rows['robust']['all']} either way)")
+    return [("robustness.md", q) for q in quotes]
+
+
 def quotations() -> list[tuple[str, str]]:
     """Every (page, quoted text) rebuilt from its kept output or shipped result file."""
     return [
@@ -358,6 +411,7 @@ def quotations() -> list[tuple[str, str]]:
         *_hydraulics_quotations(),
         *_machines_quotations(),
         *_reproduction_quotations(),
+        *_robustness_quotations(),
     ]
 
 
