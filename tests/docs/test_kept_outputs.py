@@ -147,7 +147,7 @@ def _design_check_quotations() -> list[tuple[str, str]]:
     empty, full = re.findall(r"loop margin (\d\.\d{3}) rad/s", text)
     worst = min(float(v) for v in re.findall(r"worst margin (\d\.\d{3}) rad/s", text))
     quotes.append(f"the loop's margin {empty} / {full} rad/s")
-    quotes.append(f"at least {worst:.3f} rad/s on the sampled ones")
+    quotes.append(f"at least {worst:.3f} rad/s on the 16 sampled ones")
     closest = sorted(change, key=change.get, reverse=True)[:2]
     assert closest == ["empty, ISO D 30 km/h", "full, boards 9 km/h"], closest
     quotes.append(
