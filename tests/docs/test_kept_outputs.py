@@ -424,12 +424,18 @@ def test_quoted_figure_matches_its_source(name: str, quote: str) -> None:
     assert flat(quote) in flat(page(name)), f"{name} should quote, from its source: {quote!r}"
 
 
-def test_the_parameters_page_shows_what_its_block_prints(tmp_path, monkeypatch, capsys) -> None:
-    """The parameters page's block is cheap (no simulation): run it and compare its output."""
-    code, shown = re.search(
-        r"```python\n(.*?)```\n\nprints\n\n```text\n(.*?)```", page("parameters.md"), re.S
-    ).groups()
+#: Pages whose block before "prints" is cheap (no simulation): a marker of that block's code.
+CHEAP_BLOCKS = {
+    "parameters.md": "default_loader()",
+    "simulation.md": "validity_bounds(",
+}
+
+
+@pytest.mark.parametrize("name", sorted(CHEAP_BLOCKS))
+def test_a_cheap_block_prints_what_its_page_shows(name: str, tmp_path, monkeypatch, capsys) -> None:
+    """A cheap block with its output on the page: run it and compare the output exactly."""
+    pairs = re.findall(r"```python\n(.*?)```\n\nprints\n\n```text\n(.*?)```", page(name), re.S)
+    ((code, shown),) = [pair for pair in pairs if CHEAP_BLOCKS[name] in pair[0]]
     monkeypatch.chdir(tmp_path)
-    exec(compile(code, "parameters.md", "exec"), {"__name__": "__guide__"})
+    exec(compile(code, name, "exec"), {"__name__": "__guide__"})
     assert capsys.readouterr().out == shown
-    assert (tmp_path / "my_loader.toml").is_file()
