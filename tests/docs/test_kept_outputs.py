@@ -345,6 +345,14 @@ def _reproduction_quotations() -> list[tuple[str, str]]:
     quotes.append(f"the report's four give {four} % at 9 km/h empty")
     quotes.append(f"150 give {many} %")
     quotes.append(f"at most {max(float(r['se_pp']) for r in rows):.1f} pp")
+    factors = ("0.9600", "0.9800", "1.0000", "1.0075", "1.0100", "1.0125", "1.0200", "1.0400")
+    for name, label in (
+        ("scatter_cause_empty.txt", "a_total as built [m/s²]"),
+        ("scatter_cause_empty_damped.txt", "a_total, tyres' c_y = 20 kN s/m [m/s²]"),
+    ):
+        totals = dict(re.findall(r"^\s+(\d\.\d{4})\s+(\d\.\d{3})\s+\d+$", kept(name), re.M))
+        cells = " | ".join(f"{float(totals[f]):.2f}" for f in factors)
+        quotes.append(f"| {label} | {cells} |")
     return [("reproduction.md", q) for q in quotes]
 
 
