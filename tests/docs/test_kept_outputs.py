@@ -2,12 +2,15 @@
 
 Beside the tutorial (``test_tutorial_blocks.py``) and the Table 6 quotations
 (``test_quoted_numbers.py``), the guide shows outputs of ``check-design``, ``simulate``,
-``identify``, ``preview``, ``bound --bound constrained`` and the quick benchmark. Each is kept
-whole in ``docs/measurements/`` (:data:`SHOWN`), its first line saying the command, the date and
-the machine; every line a page shows after the command must be a line of the kept file (a line
-shortened with "…" must hold its pieces in order). Figures quoted in the pages' prose are rebuilt
-from the kept outputs and from shipped result files (``loader_model/data``) at the page's
-rounding (:func:`quotations`). Cheap: it reads files only.
+``identify``, ``preview``, ``bound``, ``hydraulics``, ``robustness`` and the quick benchmark. Each
+is kept whole in ``docs/measurements/`` (:data:`SHOWN`, :data:`PRINTED`), its first line saying
+the command, the date and the machine; every line a page shows after the command must be a line
+of the kept file (a line shortened with "…" must hold its pieces in order). Figures quoted in the
+pages' prose are rebuilt from the kept outputs and from shipped result files
+(``loader_model/data``: the shipped designs and their checks, the scatter study) at the page's
+rounding (:func:`quotations`); a page's claim about them ("every preview length ends above the
+baseline") is asserted on the source. Blocks that print in well under a second
+(:data:`CHEAP_BLOCKS`) are run and their output compared exactly. Cheap: no simulation.
 """
 
 from __future__ import annotations
