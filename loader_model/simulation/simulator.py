@@ -251,7 +251,9 @@ def simulate(
     state_names, output_names = layout.state_names, layout.output_names
     n_w = len(layout.exogenous_names)
     y_errors, y_steps = _sensor_errors(sensors, count, output_names)
-    bounds = resolve_bounds(validity, params, machine=scenario.plant.machine)
+    bounds = resolve_bounds(
+        validity, params, machine=scenario.plant.machine, tyre_radius_m=road.tyre_radii_m
+    )
     monitor = validity_check.ValidityMonitor(bounds, period_s, layout)
     machine = scenario.plant.machine
     period, backend = compile_period(controller, period_s, substeps, jit, machine)
