@@ -37,7 +37,7 @@ from loader_model.io.files import read_text
 from loader_model.machines import MachineInfo, machine
 from loader_model.parameters.checks import MAX_ROD_TO_PISTON_RATIO
 from loader_model.parameters.hydraulics import CylinderParameters, HydraulicParameters
-from loader_model.parameters.tyres import TYRE_FIELDS, TYRE_LIMITS
+from loader_model.parameters.tyres import tyre_table
 
 __all__ = [
     "HYDRAULIC_NAMES",
@@ -193,7 +193,9 @@ def parse_machine_parameters(text: str, info: MachineInfo, origin: str) -> Machi
         hydraulics[name], sources[f"hydraulics.{name}"] = _schema_value(
             f"{origin} [hydraulics]", HydraulicParameters, name, hyd_raw[name]
         )
-    tyres = _tyres(origin, info, _section(origin, raw, "tyres"), sources)
+    tyres = tyre_table(
+        f"{origin} [tyres]", info, _section(origin, raw, "tyres"), sources, _entry, _names
+    )
     loads: dict[str, dict[str, float]] = {}
     for case, table in raw.get("loads", {}).items():
         where = f"{origin} [loads.{case}]"
@@ -208,33 +210,6 @@ def parse_machine_parameters(text: str, info: MachineInfo, origin: str) -> Machi
     return MachineParameters(
         info.name, model, CylinderParameters(**cyl), hydraulics, loads, sources, origin, tyres
     )
-
-
-def _tyres(
-    origin: str, info: MachineInfo, table: dict[str, Any], sources: dict[str, str]
-) -> dict[str, float]:
-    """The ``[tyres]`` table: every name the description declares, in its range and limits."""
-    where = f"{origin} [tyres]"
-    names = set(info.tyre_units)
-    _names(where, table, names, names)
-    limits = {prefix: (TYRE_LIMITS[name], unit) for prefix, name, unit in TYRE_FIELDS}
-    tyres = {}
-    for name, unit in info.tyre_units.items():
-        value, sources[f"tyres.{name}"] = _entry(where, name, table[name], unit)
-        value = real_number(f"{where}: {name}", value)
-        low, high = info.tyre_ranges.get(name, (-math.inf, math.inf))
-        allowed = limits.get(name.split("_", 1)[0], (None, unit))[0]
-        if not (math.isfinite(value) and low <= value <= high):
-            raise ValueError(
-                f"{where}: {name} = {value!r} {unit} is out of range; allowed: [{low:g}, "
-                f"{high:g}] (the description of {info.name!r})"
-            )
-        if allowed is not None and not allowed.contains(value):
-            raise ValueError(
-                f"{where}: {name} = {value!r} {unit} is out of range; allowed: {allowed.describe()}"
-            )
-        tyres[name] = value
-    return tyres
 
 
 def load_machine_parameters(path: str | os.PathLike[str], name: str) -> MachineParameters:

@@ -26,9 +26,11 @@ inside the limits below and its machine description's range.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from loader_model.io.arrays import real_number
 from loader_model.parameters.fields import Range
 
 __all__ = [
@@ -37,6 +39,7 @@ __all__ = [
     "AxleEnvelope",
     "axle_envelopes",
     "tyre_parameter_names",
+    "tyre_table",
 ]
 
 #: (per-axle prefix, field of the grouped file, unit), in the order of the files.
@@ -141,3 +144,43 @@ def axle_envelopes(parameters: Any, axles: tuple[str, ...]) -> tuple[AxleEnvelop
             raise ValueError(f"{origin} [tyres]: missing {', '.join(missing)}")
         out.append(AxleEnvelope(*(values[name] for name in names)))
     return tuple(out)
+
+
+def tyre_table(
+    where: str,
+    info: Any,
+    table: dict[str, Any],
+    sources: dict[str, str],
+    entry: Callable[[str, str, Any, str], tuple[Any, str]],
+    names: Callable[[str, dict[str, Any], set[str], set[str]], None],
+) -> dict[str, float]:
+    """The ``[tyres]`` table of a flat machine file: every name the description of ``info``
+    (a :class:`~loader_model.machines.MachineInfo`) declares, each value in its range there and
+    in :data:`TYRE_LIMITS`; ``entry`` and ``names`` check a ``{ value, unit, source }`` entry
+    and the table's names as for the file's other tables. Records each source in ``sources``.
+
+    Raises
+    ------
+    ValueError
+        Naming ``where``, the entry, the value and what is allowed.
+    """
+    declared = set(info.tyre_units)
+    names(where, table, declared, declared)
+    limits = {prefix: TYRE_LIMITS[name] for prefix, name, _ in TYRE_FIELDS}
+    out = {}
+    for name, unit in info.tyre_units.items():
+        value, sources[f"tyres.{name}"] = entry(where, name, table[name], unit)
+        value = real_number(f"{where}: {name}", value)
+        low, high = info.tyre_ranges.get(name, (-math.inf, math.inf))
+        allowed = limits.get(name.split("_", 1)[0])
+        if not (math.isfinite(value) and low <= value <= high):
+            raise ValueError(
+                f"{where}: {name} = {value!r} {unit} is out of range; allowed: [{low:g}, "
+                f"{high:g}] (the description of {info.name!r})"
+            )
+        if allowed is not None and not allowed.contains(value):
+            raise ValueError(
+                f"{where}: {name} = {value!r} {unit} is out of range; allowed: {allowed.describe()}"
+            )
+        out[name] = value
+    return out

@@ -100,3 +100,44 @@ def test_validity_contact_points_lie_each_axle_radius_below_it() -> None:
     # a larger front tyre lowers the front contact: the nose-down tip-over angle shrinks
     larger = validity_bounds(params, tyre_radius_m=(0.6, 0.42))
     assert larger.pitch_down_rad < same.pitch_down_rad
+
+
+def test_a_machines_own_radii_reach_each_axle_of_its_road_input() -> None:
+    """The compact wheel loader with 0.3 m front and 0.6 m rear tyres over one long board:
+    course_input builds each axle's rigid envelope from its own radius (closed form above)."""
+    import dataclasses
+
+    from loader_model.parameters.machine_files import default_machine_parameters
+    from loader_model.plant.scenario import resolve_plant
+    from loader_model.simulation import Course
+    from loader_model.simulation.simulator import course_input
+
+    shipped = default_machine_parameters("compact_wheel_loader")
+    radii = {"R_A": 0.3, "R_B": 0.6}
+    params = dataclasses.replace(shipped, tyres=shipped.tyres | radii)
+    plant = resolve_plant(params, None, machine="compact_wheel_loader")
+    board = single_board(height_m=H_M, width_m=2.0, position_m=EDGE_M)
+    course = Course(board, speed_m_s=SPEED_M_S, start_m=0.0, settle_s=0.0, name="one board")
+    drive = course_input(course, plant, envelope="rigid")
+    assert drive.tyre_radii_m == (0.3, 0.6)
+    distance = drive.axle_distance(drive.time_s)
+    for axle, radius_m in enumerate(radii.values()):
+        rows = distance[:, axle] < EDGE_M + 0.5
+        expected = step_height(distance[rows, axle], radius_m)
+        np.testing.assert_allclose(
+            drive.road_m[rows, 2 * axle + 1], expected, rtol=0, atol=1e-12 * H_M
+        )
+    # the tandem cams take each axle's radius too: different shapes, each its own envelope
+    cams = course_input(course, plant, envelope="tandem-cam").cams
+    assert [cam.half_height_m for cam in cams] == [0.3, 0.6]  # b_e = 1.0 R of each axle
+
+
+def test_the_description_and_the_runtime_state_the_same_tyre_limits() -> None:
+    from derive.description_tyres import TYRE_LIMITS as DESCRIBED
+    from loader_model.parameters.tyres import TYRE_FIELDS, TYRE_LIMITS
+
+    assert [prefix for prefix, _, _ in TYRE_FIELDS] == list(DESCRIBED)
+    for prefix, name, unit in TYRE_FIELDS:
+        limit = TYRE_LIMITS[name]
+        assert DESCRIBED[prefix] == (unit, limit.low, limit.high, limit.low_open), prefix
+        assert not limit.high_open
