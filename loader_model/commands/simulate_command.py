@@ -74,7 +74,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         choices=("tandem-cam", "rigid"),
         default="tandem-cam",
         help="how the tyres envelop the road: tandem elliptical cams per axle from the static "
-        "tyre deflection or rigid discs of radius 0.42 m",
+        "tyre deflection or rigid discs of each axle's free tyre radius (the parameter set's "
+        "tyres: 0.42 m on the shipped machines)",
     )
     parser.add_argument(
         "--substeps",
