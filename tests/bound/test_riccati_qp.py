@@ -9,7 +9,7 @@ from dataclasses import replace
 import casadi as ca
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from loader_model.bound.constrained import path_limits
@@ -98,6 +98,7 @@ def _cost(qp: StageQP, v: np.ndarray) -> float:
 
 @settings(max_examples=25, deadline=None)
 @given(seed=st.integers(0, 2**31), inputs=st.integers(1, 3))
+@example(seed=1107360, inputs=2)  # stalled at a dual residual of 2.8e-9 with one refinement step
 def test_random_stage_qps_reach_qpoases_optimum(seed, inputs):
     """Random convex stage QPs (14 stages, 4 states, 1-3 inputs, 3 two-sided rows per stage, a
     box, 2 end rows; random dynamics, some unstable): the optimum's cost agrees with qpOASES'
