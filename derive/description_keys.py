@@ -14,6 +14,8 @@ import difflib
 from collections.abc import Collection, Iterable, Mapping
 
 __all__ = [
+    "CIRCUIT_KINDS",
+    "CIRCUIT_SUPPLIES",
     "JOINTS",
     "KEYS",
     "REQUIRED",
@@ -27,7 +29,7 @@ JOINTS = ("free", "pin", "slider")
 #: The keys each table of a description takes: the top level, [machine], a body by its joint,
 #: an axle, an actuator, a sensor and a parameter.
 KEYS: dict[str, frozenset[str]] = {
-    "": frozenset({"machine", "bodies", "axles", "actuators", "sensors", "parameters"}),
+    "": frozenset({"machine", "bodies", "axles", "actuators", "sensors", "parameters", "circuit"}),
     "machine": frozenset({"name", "title", "point_range"}),
     "free": frozenset({"joint", "label", "reference", "coordinates", "mass", "inertia", "points"}),
     "pin": frozenset(
@@ -60,6 +62,15 @@ REQUIRED: dict[str, frozenset[str]] = {
     "sensor": frozenset({"axes"}),
     "parameter": frozenset({"unit", "description"}),
 }
+
+# -- the lift circuit ([circuit], optional; absent: the pump of the paper) --
+#: The kinds of lift circuit: the paper's closed-circuit displacement-controlled pump, or a
+#: proportional directional valve in an open circuit.
+CIRCUIT_KINDS = ("pump", "valve")
+#: What feeds a valve circuit: a load-sensing pump or a constant-pressure source.
+CIRCUIT_SUPPLIES = ("load_sensing", "constant_pressure")
+KEYS["circuit"] = frozenset({"kind", "supply"})
+REQUIRED["circuit"] = frozenset({"kind"})
 
 
 def _shown(value: object, limit: int = 60) -> str:

@@ -9,7 +9,11 @@ for the shipped values::
     [cylinders]   # the driven lift cylinder group (fields of CylinderParameters): Eq. 28, 30
     count = { value = 2, unit = "-", source = "..." }
     [hydraulics]  # bulk_modulus and charge_pressure (fields of HydraulicParameters)
+    [valve]       # a valve circuit's (fields of ValveParameters; its [hydraulics]: bulk_modulus)
     [loads.empty] # a bucket load case: values of [model] it replaces (m_3, J_3, Q_x, ...)
+
+``[valve]`` is required for a machine whose description has ``[circuit] kind = "valve"`` and
+refused for any other (its rod side is at the tank pressure, so no charge pressure is given).
 
 Every value is checked on loading: a missing or unknown name, a wrong unit (the generated
 ``PARAMETER_UNITS``; the schema's units for the cylinders), no source, or a value outside the
@@ -34,6 +38,7 @@ from loader_model.io.files import read_text
 from loader_model.machines import MachineInfo, machine
 from loader_model.parameters.checks import MAX_ROD_TO_PISTON_RATIO
 from loader_model.parameters.hydraulics import CylinderParameters, HydraulicParameters
+from loader_model.parameters.valve import ValveParameters
 
 __all__ = [
     "HYDRAULIC_NAMES",
@@ -48,7 +53,9 @@ __all__ = [
 
 #: The fields of :class:`HydraulicParameters` a machine file gives (the rest is the plant's).
 HYDRAULIC_NAMES = ("bulk_modulus", "charge_pressure")
-_SECTIONS = {"model", "cylinders", "hydraulics", "loads"}
+#: The fields of :class:`HydraulicParameters` a valve circuit's file gives.
+VALVE_HYDRAULIC_NAMES = ("bulk_modulus",)
+_SECTIONS = {"model", "cylinders", "hydraulics", "valve", "loads"}
 
 
 @dataclass(frozen=True)
@@ -64,13 +71,15 @@ class MachineParameters:
     cylinders : CylinderParameters
         The driven lift cylinder group (count, bore, rod, stroke, lengths, dead volumes).
     hydraulics : dict
-        ``bulk_modulus`` [Pa] and ``charge_pressure`` [Pa].
+        ``bulk_modulus`` [Pa] and (pump circuit) ``charge_pressure`` [Pa].
     loads : dict
         Load case name -> the model values it replaces.
     sources : dict
         ``section.name`` -> source of every value.
     origin : str
         The file it was read from.
+    valve : ValveParameters or None
+        The valve circuit's values (``[valve]``); None for the pump circuit.
     """
 
     machine: str
@@ -80,6 +89,15 @@ class MachineParameters:
     loads: dict[str, dict[str, float]]
     sources: dict[str, str] = field(repr=False, default_factory=dict)
     origin: str = ""
+    valve: ValveParameters | None = None
+
+    @property
+    def rod_side_pressure(self) -> float:
+        """Pressure [Pa gauge] of the rod side at rest: the charge pressure of the pump
+        circuit, the tank pressure of a valve circuit."""
+        if self.valve is not None:
+            return self.valve.tank_pressure
+        return self.hydraulics["charge_pressure"]
 
 
 def _entry(where: str, name: str, raw: Any, unit: str) -> tuple[Any, str]:
@@ -179,9 +197,11 @@ def parse_machine_parameters(text: str, info: MachineInfo, origin: str) -> Machi
             f"{MAX_ROD_TO_PISTON_RATIO} x piston_diameter {cyl['piston_diameter']!r} m"
         )
     hyd_raw = _section(origin, raw, "hydraulics")
-    _names(f"{origin} [hydraulics]", hyd_raw, set(HYDRAULIC_NAMES), set(HYDRAULIC_NAMES))
+    valve = info.circuit == "valve"
+    hyd_names = VALVE_HYDRAULIC_NAMES if valve else HYDRAULIC_NAMES
+    _names(f"{origin} [hydraulics]", hyd_raw, set(hyd_names), set(hyd_names))
     hydraulics = {}
-    for name in HYDRAULIC_NAMES:
+    for name in hyd_names:
         hydraulics[name], sources[f"hydraulics.{name}"] = _schema_value(
             f"{origin} [hydraulics]", HydraulicParameters, name, hyd_raw[name]
         )
@@ -196,9 +216,46 @@ def parse_machine_parameters(text: str, info: MachineInfo, origin: str) -> Machi
             loads[case][name], sources[f"loads.{case}.{name}"] = _model_value(
                 where, info, name, item
             )
+    valve_values = _valve(origin, raw, info, sources)
     return MachineParameters(
-        info.name, model, CylinderParameters(**cyl), hydraulics, loads, sources, origin
+        info.name,
+        model,
+        CylinderParameters(**cyl),
+        hydraulics,
+        loads,
+        sources,
+        origin,
+        valve_values,
     )
+
+
+def _valve(
+    origin: str, raw: dict[str, Any], info: MachineInfo, sources: dict[str, str]
+) -> ValveParameters | None:
+    """The checked ``[valve]`` table: required for a valve circuit, refused for a pump's."""
+    if info.circuit != "valve":
+        if "valve" in raw:
+            raise ValueError(
+                f"{origin}: [valve] is given, but machine {info.name!r} has the circuit kind "
+                f"{info.circuit!r}; allowed: [valve] for a description with [circuit] kind = "
+                '"valve" only'
+            )
+        return None
+    where = f"{origin} [valve]"
+    if not isinstance(raw.get("valve"), dict):
+        raise ValueError(
+            f"{origin}: missing table [valve] (machine {info.name!r} has [circuit] kind = "
+            '"valve"; give the fields of ValveParameters, guide page "Machines")'
+        )
+    fields = [f.name for f in ValveParameters.__dataclass_fields__.values() if f.init]
+    fields = [n for n in fields if n != "sources"]
+    _names(where, raw["valve"], set(fields), set(fields))
+    values = {}
+    for name in fields:
+        values[name], sources[f"valve.{name}"] = _schema_value(
+            where, ValveParameters, name, raw["valve"][name]
+        )
+    return ValveParameters(**values)
 
 
 def load_machine_parameters(path: str | os.PathLike[str], name: str) -> MachineParameters:

@@ -50,6 +50,7 @@ from loader_model.plant import components as hyd
 from loader_model.plant.circuit import circuit_flows
 from loader_model.plant.layout import PlantLayout, plant_layout
 from loader_model.plant.occupant import occupant_dynamics
+from loader_model.plant.valve_circuit import valve_circuit_flows
 
 __all__ = [
     "EXOGENOUS_NAMES",
@@ -112,6 +113,10 @@ def hydraulic_drive(
         position, velocity, theta["stroke"], theta["k_end"], theta["c_end"]
     )
     force = n * (piston * p_a - annulus * p_b) - friction + end_stop
+    if layout.circuit == "valve":
+        common = {"force": force, "position": position, "velocity": velocity}
+        common |= {"V_A": n * v_a, "V_B": n * v_b, "friction": friction, "end_stop": end_stop}
+        return _valve_drive(x[h : h + 5], u, theta, common, n * piston, n * annulus)
     v_max, vd_max = theta["V_p_max"], theta["Vd_p_max"]
     displacement = hyd.saturate(v_p, v_max, _SATURATION_BAND * v_max)
     flows = circuit_flows(theta, p_a, p_b, velocity, displacement)
@@ -166,7 +171,64 @@ def hydraulic_drive(
     }
 
 
-def build_plant(symbol: type = ca.SX, machine: str = DEFAULT_MACHINE) -> ca.Function:
+def _accumulator(theta: dict[str, Any], p_a: Any, v_acc: Any) -> tuple[Any, Any, Any]:
+    """Gas pressure, orifice flow (at chamber A's density) and oil volume rate of the
+    accumulator (module notes: the oil mass is conserved between chamber and accumulator)."""
+    p_acc = hyd.accumulator_gas_pressure(
+        theta["p_0"], theta["n_acc"] * theta["V_0"], theta["n_poly"], v_acc
+    )
+    q_acc = (
+        theta["accumulator_on"]
+        * theta["n_acc"]
+        * hyd.orifice_flow(
+            theta["d_orifice"], theta["C_d"], theta["rho_oil"], p_a - p_acc, theta["dp_laminar"]
+        )
+    )
+    return p_acc, q_acc, ca.exp(p_a / theta["K_oil"]) * q_acc
+
+
+def _valve_drive(
+    states: Any, u: Any, theta: dict[str, Any], common: dict[str, Any], piston: Any, annulus: Any
+) -> dict[str, Any]:
+    """:func:`hydraulic_drive` of a valve circuit (:mod:`loader_model.plant.valve_circuit`):
+    the spool's loop in place of the pump's, the valve's flows through the load-holding valve
+    into A and directly into B. ``piston``, ``annulus``: total areas over the cylinders."""
+    p_a, p_b, x_s, xd_s, v_acc = (states[k] for k in range(5))
+    x_max, xd_max = theta["x_s_max"], theta["xd_s_max"]
+    spool = hyd.saturate(x_s, x_max, _SATURATION_BAND * x_max)
+    flows = valve_circuit_flows(theta, p_a, p_b, spool)
+    p_acc, q_acc, accumulator_rate = _accumulator(theta, p_a, v_acc)
+    velocity, leakage = common["velocity"], flows["leakage"]
+    into_a = theta["holding_open"] * flows["valve_a"] + flows["check"] - flows["relief"]
+    dp_a = hyd.chamber_pressure_rate(
+        theta["K_oil"], common["V_A"], into_a - q_acc - piston * velocity - leakage
+    )
+    into_b = flows["valve_b"] + flows["check_b"] + annulus * velocity + leakage
+    dp_b = hyd.chamber_pressure_rate(theta["K_oil"], common["V_B"], into_b)
+    command = hyd.saturate(u, x_max, _SATURATION_BAND * x_max)
+    rate = hyd.saturate(xd_s, xd_max, _SATURATION_BAND * xd_max)
+    dxd_s = hyd.pump_displacement_acceleration(
+        x_s, xd_s, command, theta["omega_s"], theta["zeta_s"]
+    )
+    return common | {
+        "pump_flow": flows["supply_flow"],
+        "supply_pressure": flows["supply_pressure"],
+        "valve_a": flows["valve_a"],
+        "valve_b": flows["valve_b"],
+        "check": flows["check"],
+        "check_b": flows["check_b"],
+        "relief": flows["relief"],
+        "leakage": leakage,
+        "q_acc": q_acc,
+        "accumulator_rate": accumulator_rate,
+        "p_acc": p_acc,
+        "rates": ca.vertcat(dp_a, dp_b, rate, dxd_s, accumulator_rate),
+    }
+
+
+def build_plant(
+    symbol: type = ca.SX, machine: str = DEFAULT_MACHINE, circuit: str | None = None
+) -> ca.Function:
     """Build the plant Function ``plant(x, u, w, params) -> (xdot, y)`` (module docstring).
 
     Parameters
@@ -176,8 +238,10 @@ def build_plant(symbol: type = ca.SX, machine: str = DEFAULT_MACHINE) -> ca.Func
     machine : str
         A machine of :func:`loader_model.machines.list_machines` (default the skid-steer); its
         names and sizes: :func:`plant_layout`.
+    circuit : str, optional
+        ``"pump"`` or ``"valve"``: the lift circuit (default the machine description's).
     """
-    layout = plant_layout(machine)
+    layout = plant_layout(machine, circuit)
     info = layout.machine
     n_p, n_a, n_w = layout.n_coordinates, layout.n_anchors, len(info.road_names)
     x = symbol.sym("x", len(layout.state_names))
