@@ -324,7 +324,7 @@ def _print_limits(result, plant) -> None:
     """Print the share of the run the pump spends at its limits, and how the run ends."""
     from loader_model.simulation.settling import limit_duty, settle_measure
 
-    duty = limit_duty(result.columns, plant.parameter("V_p_max"), plant.parameter("Vd_p_max"))
+    duty = limit_duty(result.columns, plant.command_limit(), plant.rate_limit())
     print(
         f"pump at its limits: command at V_p,max {duty.command:.1%} of the run, displacement "
         f"rate at its limit {duty.rate:.1%}"

@@ -152,7 +152,7 @@ def _run(
     result = simulate(
         road, scenario, duration_s=study.duration_s, sensors=None if name in _HOLDING else sensors
     )
-    return _metrics(result, plant.parameter("V_p_max"))
+    return _metrics(result, plant.command_limit())
 
 
 def run_sample(study: Study, gains: Gains, spec: SampleSpec) -> list[dict[str, Any]]:

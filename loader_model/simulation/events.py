@@ -51,6 +51,7 @@ def find_events(
     airborne_min_s: float = DEFAULT_AIRBORNE_MIN_S,
     axles: Sequence[str] = ("A", "B"),
     max_rate: float | None = None,
+    rate_signal: str = "Vd_p",
 ) -> tuple[Event, ...]:
     """All events (module notes) in a run's columns, in order of their start.
 
@@ -72,6 +73,10 @@ def find_events(
     max_rate : float, optional
         The pump's displacement rate limit in m³/(rev·s): ``pump_rate_limit`` events (none if
         not given).
+    rate_signal : str
+        The column of the actuator's rate: ``Vd_p`` of the pump, ``xd_s`` of a valve's spool
+        (``max_rate`` then in m/s; the ``V_p_ref`` column holds the spool command in m and
+        ``max_displacement`` is the spool stroke).
     """
     found: list[Event] = []
 
@@ -104,9 +109,9 @@ def find_events(
         np.abs(command) >= COMMAND_AT_LIMIT * max_displacement,
         _extreme,
     )
-    if max_rate is not None and "Vd_p" in columns:
-        rate = columns["Vd_p"]
-        add("pump_rate_limit", "Vd_p", np.abs(rate) >= RATE_AT_LIMIT * max_rate, _extreme)
+    if max_rate is not None and rate_signal in columns:
+        rate = columns[rate_signal]
+        add("pump_rate_limit", rate_signal, np.abs(rate) >= RATE_AT_LIMIT * max_rate, _extreme)
     if SETTLE_SIGNAL in columns and time_s.size > 1:
         settle = settle_measure(time_s, columns)
         if settle.persistent:

@@ -338,10 +338,11 @@ def simulate(
         time_rows,
         columns_out,
         stroke_m=scenario.plant.parameter("stroke"),
-        max_displacement=scenario.plant.parameter("V_p_max"),
+        max_displacement=scenario.plant.command_limit(),
         airborne_min_s=airborne_min_s,
         axles=layout.machine.axles,
-        max_rate=scenario.plant.parameter("Vd_p_max"),
+        max_rate=scenario.plant.rate_limit(),
+        rate_signal=layout.state_names[layout.index("p_A") + 3],
     )
     metadata = {
         "controller": controller.name(),
