@@ -38,7 +38,7 @@ from loader_model.io.files import read_text
 from loader_model.machines import MachineInfo, machine
 from loader_model.parameters.checks import MAX_ROD_TO_PISTON_RATIO
 from loader_model.parameters.hydraulics import CylinderParameters, HydraulicParameters
-from loader_model.parameters.valve import ValveParameters
+from loader_model.parameters.valve import ValveParameters, valve_table
 
 __all__ = [
     "HYDRAULIC_NAMES",
@@ -216,7 +216,7 @@ def parse_machine_parameters(text: str, info: MachineInfo, origin: str) -> Machi
             loads[case][name], sources[f"loads.{case}.{name}"] = _model_value(
                 where, info, name, item
             )
-    valve_values = _valve(origin, raw, info, sources)
+    valve_values = valve_table(origin, raw, info, sources)
     return MachineParameters(
         info.name,
         model,
@@ -227,35 +227,6 @@ def parse_machine_parameters(text: str, info: MachineInfo, origin: str) -> Machi
         origin,
         valve_values,
     )
-
-
-def _valve(
-    origin: str, raw: dict[str, Any], info: MachineInfo, sources: dict[str, str]
-) -> ValveParameters | None:
-    """The checked ``[valve]`` table: required for a valve circuit, refused for a pump's."""
-    if info.circuit != "valve":
-        if "valve" in raw:
-            raise ValueError(
-                f"{origin}: [valve] is given, but machine {info.name!r} has the circuit kind "
-                f"{info.circuit!r}; allowed: [valve] for a description with [circuit] kind = "
-                '"valve" only'
-            )
-        return None
-    where = f"{origin} [valve]"
-    if not isinstance(raw.get("valve"), dict):
-        raise ValueError(
-            f"{origin}: missing table [valve] (machine {info.name!r} has [circuit] kind = "
-            '"valve"; give the fields of ValveParameters, guide page "Machines")'
-        )
-    fields = [f.name for f in ValveParameters.__dataclass_fields__.values() if f.init]
-    fields = [n for n in fields if n != "sources"]
-    _names(where, raw["valve"], set(fields), set(fields))
-    values = {}
-    for name in fields:
-        values[name], sources[f"valve.{name}"] = _schema_value(
-            where, ValveParameters, name, raw["valve"][name]
-        )
-    return ValveParameters(**values)
 
 
 def load_machine_parameters(path: str | os.PathLike[str], name: str) -> MachineParameters:

@@ -11,10 +11,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 from loader_model.parameters.fields import Range, TypedLeaves, integer, si
 
-__all__ = ["ValveParameters"]
+if TYPE_CHECKING:
+    from loader_model.machines import MachineInfo
+
+__all__ = ["ValveParameters", "valve_table"]
 
 _CONDUCTANCE = Range(0.0, 1e-11, reason="a leak-free spool (0) to 6 l/min per 100 bar")
 
@@ -101,3 +105,41 @@ class ValveParameters(TypedLeaves):
     def natural_frequency_rad_s(self) -> float:
         """Spool loop's natural frequency in rad/s (2π times :attr:`natural_frequency`)."""
         return 2.0 * math.pi * self.natural_frequency
+
+
+def valve_table(
+    origin: str, raw: dict[str, Any], info: MachineInfo, sources: dict[str, str]
+) -> ValveParameters | None:
+    """The checked ``[valve]`` table of a machine parameter file's parsed ``raw`` (module
+    notes): required for a valve circuit, refused for a pump's; ``sources`` gains the sources.
+
+    Raises
+    ------
+    ValueError
+        Naming the file, the entry, the value and what is allowed.
+    """
+    from loader_model.parameters.machine_files import _names, _schema_value
+
+    if info.circuit != "valve":
+        if "valve" in raw:
+            raise ValueError(
+                f"{origin}: [valve] is given, but machine {info.name!r} has the circuit kind "
+                f"{info.circuit!r}; allowed: [valve] for a description with [circuit] kind = "
+                '"valve" only'
+            )
+        return None
+    where = f"{origin} [valve]"
+    if not isinstance(raw.get("valve"), dict):
+        raise ValueError(
+            f"{origin}: missing table [valve] (machine {info.name!r} has [circuit] kind = "
+            '"valve"; give the fields of ValveParameters, guide page "Machines")'
+        )
+    fields = [f.name for f in ValveParameters.__dataclass_fields__.values() if f.init]
+    fields = [n for n in fields if n != "sources"]
+    _names(where, raw["valve"], set(fields), set(fields))
+    values = {}
+    for name in fields:
+        values[name], sources[f"valve.{name}"] = _schema_value(
+            where, ValveParameters, name, raw["valve"][name]
+        )
+    return ValveParameters(**values)

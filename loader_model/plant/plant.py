@@ -36,6 +36,13 @@ the cylinder). The pump's
 displacement loop is the second-order system of Fig. 9 with its command saturated at ±V_p,max
 and its rate limited to ±V̇_p,max (Table 2, errata 8), each by the C¹ saturation of
 :mod:`loader_model.plant.components` (exact below 99 % of the limit).
+
+A machine whose description has ``[circuit] kind = "valve"`` has a proportional directional
+valve in place of the pump (:mod:`loader_model.plant.valve_circuit`): the states V_p, V̇_p become
+the spool x_s, ẋ_s (the same loop, saturation and rate limit, with ω_s, ζ_s, x_s,max, ẋ_s,max),
+the input its command x_s,ref [m]; the valve's flow reaches A through the load-holding valve
+and B directly, the rod side drains to the tank line instead of the charge line, and Table 5's
+pump-side flow is not part of it.
 """
 
 from __future__ import annotations
@@ -50,7 +57,7 @@ from loader_model.plant import components as hyd
 from loader_model.plant.circuit import circuit_flows
 from loader_model.plant.layout import PlantLayout, plant_layout
 from loader_model.plant.occupant import occupant_dynamics
-from loader_model.plant.valve_circuit import valve_circuit_flows
+from loader_model.plant.valve_circuit import valve_drive
 
 __all__ = [
     "EXOGENOUS_NAMES",
@@ -91,7 +98,9 @@ def hydraulic_drive(
     ẋ_cyl, chamber volumes ``V_A``, ``V_B``, flows ``pump_flow``, ``charge``, ``check``,
     ``relief``, ``leakage``, ``q_acc`` (into the orifice, at chamber A's density),
     ``accumulator_rate`` (its oil volume rate), forces ``friction`` and ``end_stop``.
-    ``layout`` (default the skid-steer's) gives the machine and its state indices.
+    ``layout`` (default the skid-steer's) gives the machine, its circuit and its state indices;
+    a valve circuit's drive has ``pump_flow`` the supply's flow and adds ``supply_pressure``,
+    ``valve_a``, ``valve_b`` and ``check_b`` (:mod:`loader_model.plant.valve_circuit`).
     """
     layout = layout or _SKID_STEER
     n_p, h = layout.n_coordinates, layout.index("p_A")
@@ -116,7 +125,7 @@ def hydraulic_drive(
     if layout.circuit == "valve":
         common = {"force": force, "position": position, "velocity": velocity}
         common |= {"V_A": n * v_a, "V_B": n * v_b, "friction": friction, "end_stop": end_stop}
-        return _valve_drive(x[h : h + 5], u, theta, common, n * piston, n * annulus)
+        return valve_drive(x[h : h + 5], u, theta, common, n * piston, n * annulus)
     v_max, vd_max = theta["V_p_max"], theta["Vd_p_max"]
     displacement = hyd.saturate(v_p, v_max, _SATURATION_BAND * v_max)
     flows = circuit_flows(theta, p_a, p_b, velocity, displacement)
@@ -168,61 +177,6 @@ def hydraulic_drive(
         "end_stop": end_stop,
         "p_acc": p_acc,
         "rates": ca.vertcat(dp_a, dp_b, rate, dvd_p, accumulator_rate),
-    }
-
-
-def _accumulator(theta: dict[str, Any], p_a: Any, v_acc: Any) -> tuple[Any, Any, Any]:
-    """Gas pressure, orifice flow (at chamber A's density) and oil volume rate of the
-    accumulator (module notes: the oil mass is conserved between chamber and accumulator)."""
-    p_acc = hyd.accumulator_gas_pressure(
-        theta["p_0"], theta["n_acc"] * theta["V_0"], theta["n_poly"], v_acc
-    )
-    q_acc = (
-        theta["accumulator_on"]
-        * theta["n_acc"]
-        * hyd.orifice_flow(
-            theta["d_orifice"], theta["C_d"], theta["rho_oil"], p_a - p_acc, theta["dp_laminar"]
-        )
-    )
-    return p_acc, q_acc, ca.exp(p_a / theta["K_oil"]) * q_acc
-
-
-def _valve_drive(
-    states: Any, u: Any, theta: dict[str, Any], common: dict[str, Any], piston: Any, annulus: Any
-) -> dict[str, Any]:
-    """:func:`hydraulic_drive` of a valve circuit (:mod:`loader_model.plant.valve_circuit`):
-    the spool's loop in place of the pump's, the valve's flows through the load-holding valve
-    into A and directly into B. ``piston``, ``annulus``: total areas over the cylinders."""
-    p_a, p_b, x_s, xd_s, v_acc = (states[k] for k in range(5))
-    x_max, xd_max = theta["x_s_max"], theta["xd_s_max"]
-    spool = hyd.saturate(x_s, x_max, _SATURATION_BAND * x_max)
-    flows = valve_circuit_flows(theta, p_a, p_b, spool)
-    p_acc, q_acc, accumulator_rate = _accumulator(theta, p_a, v_acc)
-    velocity, leakage = common["velocity"], flows["leakage"]
-    into_a = theta["holding_open"] * flows["valve_a"] + flows["check"] - flows["relief"]
-    dp_a = hyd.chamber_pressure_rate(
-        theta["K_oil"], common["V_A"], into_a - q_acc - piston * velocity - leakage
-    )
-    into_b = flows["valve_b"] + flows["check_b"] + annulus * velocity + leakage
-    dp_b = hyd.chamber_pressure_rate(theta["K_oil"], common["V_B"], into_b)
-    command = hyd.saturate(u, x_max, _SATURATION_BAND * x_max)
-    rate = hyd.saturate(xd_s, xd_max, _SATURATION_BAND * xd_max)
-    dxd_s = hyd.pump_displacement_acceleration(
-        x_s, xd_s, command, theta["omega_s"], theta["zeta_s"]
-    )
-    return common | {
-        "pump_flow": flows["supply_flow"],
-        "supply_pressure": flows["supply_pressure"],
-        "valve_a": flows["valve_a"],
-        "valve_b": flows["valve_b"],
-        "check": flows["check"],
-        "check_b": flows["check_b"],
-        "relief": flows["relief"],
-        "leakage": leakage,
-        "q_acc": q_acc,
-        "accumulator_rate": accumulator_rate,
-        "p_acc": p_acc,
-        "rates": ca.vertcat(dp_a, dp_b, rate, dxd_s, accumulator_rate),
     }
 
 

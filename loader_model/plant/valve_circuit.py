@@ -73,6 +73,7 @@ __all__ = [
     "smooth_min",
     "supply_pressure",
     "valve_circuit_flows",
+    "valve_drive",
 ]
 
 Expr = Any
@@ -83,6 +84,8 @@ ROOT_BAND_PA = 1e4
 OPENING_BAND_M = 1e-5
 #: Width [Pa] over which the supply's min and max blend (exact outside it).
 PRESSURE_BAND_PA = 1e5
+#: The spool's and its rate's C¹ saturations are exact below 99 % of their limit (as the pump's).
+SATURATION_BAND = 0.01
 
 #: (name, unit, description) of the valve circuit's own entries of the plant parameter vector.
 VALVE_PARAMETERS: tuple[tuple[str, str, str], ...] = (
@@ -211,4 +214,60 @@ def valve_circuit_flows(
         "check_b": check_b,
         "relief": relief,
         "leakage": theta["leakage_on"] * (1 - theta["holding_open"]) * seal,
+    }
+
+
+def _accumulator(theta: dict[str, Any], p_a: Any, v_acc: Any) -> tuple[Any, Any, Any]:
+    """Gas pressure, orifice flow (at chamber A's density) and oil volume rate of the
+    accumulator, as the pump circuit's (:mod:`loader_model.plant.plant`: the oil mass is
+    conserved between chamber and accumulator)."""
+    p_acc = hyd.accumulator_gas_pressure(
+        theta["p_0"], theta["n_acc"] * theta["V_0"], theta["n_poly"], v_acc
+    )
+    q_acc = (
+        theta["accumulator_on"]
+        * theta["n_acc"]
+        * hyd.orifice_flow(
+            theta["d_orifice"], theta["C_d"], theta["rho_oil"], p_a - p_acc, theta["dp_laminar"]
+        )
+    )
+    return p_acc, q_acc, ca.exp(p_a / theta["K_oil"]) * q_acc
+
+
+def valve_drive(
+    states: Any, u: Any, theta: dict[str, Any], common: dict[str, Any], piston: Any, annulus: Any
+) -> dict[str, Any]:
+    """:func:`~loader_model.plant.plant.hydraulic_drive` of a valve circuit (module notes):
+    the spool's loop in place of the pump's, the valve's flows through the load-holding valve
+    into A and directly into B. ``piston``, ``annulus``: total areas over the cylinders."""
+    p_a, p_b, x_s, xd_s, v_acc = (states[k] for k in range(5))
+    x_max, xd_max = theta["x_s_max"], theta["xd_s_max"]
+    spool = hyd.saturate(x_s, x_max, SATURATION_BAND * x_max)
+    flows = valve_circuit_flows(theta, p_a, p_b, spool)
+    p_acc, q_acc, accumulator_rate = _accumulator(theta, p_a, v_acc)
+    velocity, leakage = common["velocity"], flows["leakage"]
+    into_a = theta["holding_open"] * flows["valve_a"] + flows["check"] - flows["relief"]
+    dp_a = hyd.chamber_pressure_rate(
+        theta["K_oil"], common["V_A"], into_a - q_acc - piston * velocity - leakage
+    )
+    into_b = flows["valve_b"] + flows["check_b"] + annulus * velocity + leakage
+    dp_b = hyd.chamber_pressure_rate(theta["K_oil"], common["V_B"], into_b)
+    command = hyd.saturate(u, x_max, SATURATION_BAND * x_max)
+    rate = hyd.saturate(xd_s, xd_max, SATURATION_BAND * xd_max)
+    dxd_s = hyd.pump_displacement_acceleration(
+        x_s, xd_s, command, theta["omega_s"], theta["zeta_s"]
+    )
+    return common | {
+        "pump_flow": flows["supply_flow"],
+        "supply_pressure": flows["supply_pressure"],
+        "valve_a": flows["valve_a"],
+        "valve_b": flows["valve_b"],
+        "check": flows["check"],
+        "check_b": flows["check_b"],
+        "relief": flows["relief"],
+        "leakage": leakage,
+        "q_acc": q_acc,
+        "accumulator_rate": accumulator_rate,
+        "p_acc": p_acc,
+        "rates": ca.vertcat(dp_a, dp_b, rate, dxd_s, accumulator_rate),
     }

@@ -29,6 +29,7 @@ from loader_model.robustness.sensors import (
     sensor_model,
 )
 from loader_model.robustness.study import Study
+from loader_model.simulation.result import command_column
 from loader_model.simulation.settling import COMMAND_AT_LIMIT
 from loader_model.simulation.simulator import course_input, simulate
 
@@ -77,7 +78,7 @@ def _metrics(result: Any, max_displacement: float) -> dict[str, float]:
     evaluation = result.seat_evaluation()
     rms = {axis.axis: float(axis.weighted_rms) for axis in evaluation.axes}
     period = float(result.metadata["period_s"])
-    at_limit = np.abs(result["V_p_ref"]) >= max_displacement * COMMAND_AT_LIMIT
+    at_limit = np.abs(result[command_column(result.columns)]) >= max_displacement * COMMAND_AT_LIMIT
     saturated = period * np.count_nonzero(at_limit)
     return {
         **{f"a_w_{axis}": rms.get(axis, math.nan) for axis in AXES},

@@ -21,7 +21,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from loader_model.plant.components import ATMOSPHERIC_PRESSURE_PA
-from loader_model.simulation.result import Event
+from loader_model.simulation.result import Event, command_column
 from loader_model.simulation.settling import (
     COMMAND_AT_LIMIT,
     RATE_AT_LIMIT,
@@ -61,8 +61,9 @@ def find_events(
         Sample times in s.
     columns : dict of str to numpy.ndarray
         Needs ``p_A``, ``p_B`` [Pa], ``F_<axle>y`` [N] of every axle, ``x_piston`` [m],
-        ``V_p_ref``; ``Vd_p`` for ``max_rate``; :data:`~loader_model.simulation.settling.
-        SETTLE_SIGNAL` and the exogenous inputs for ``persistent_oscillation``.
+        ``V_p_ref`` (a valve circuit's ``x_s_ref``); ``Vd_p`` for ``max_rate``;
+        :data:`~loader_model.simulation.settling.SETTLE_SIGNAL` and the exogenous inputs for
+        ``persistent_oscillation``.
     stroke_m, max_displacement : float
         Cylinder stroke in m and the pump's maximum displacement in m³/rev.
     airborne_min_s : float
@@ -75,8 +76,7 @@ def find_events(
         not given).
     rate_signal : str
         The column of the actuator's rate: ``Vd_p`` of the pump, ``xd_s`` of a valve's spool
-        (``max_rate`` then in m/s; the ``V_p_ref`` column holds the spool command in m and
-        ``max_displacement`` is the spool stroke).
+        (``max_rate`` then in m/s, ``max_displacement`` the spool stroke in m).
     """
     found: list[Event] = []
 
@@ -102,10 +102,11 @@ def find_events(
     piston = columns["x_piston"]
     add("end_stop", "x_piston", piston < 0.0, np.min)
     add("end_stop", "x_piston", piston > stroke_m, np.max)
-    command = columns["V_p_ref"]
+    name = command_column(columns)
+    command = columns[name]
     add(
         "pump_saturation",
-        "V_p_ref",
+        name,
         np.abs(command) >= COMMAND_AT_LIMIT * max_displacement,
         _extreme,
     )

@@ -323,7 +323,7 @@ def simulate(
     for name, values in zip(output_names, y_all, strict=True):
         if name not in state_names:
             columns_out[name] = values
-    columns_out["V_p_ref"] = u_all
+    columns_out[layout.input_names[0]] = u_all  # V_p_ref, or a valve's spool command x_s_ref
     if sensors is not None:
         for name in SENSOR_NAMES:
             column = output_names.index(name)

@@ -72,7 +72,8 @@ def test_the_valve_machine_runs_the_paper_course(
     assert main([*argv, "--speed", "9", "--output", str(output)]) == 0
     with np.load(output) as data:
         columns = {name: data[name] for name in data.files if data[name].dtype.kind == "f"}
-    assert {"x_s", "xd_s", "Q_supply", "p_A", "f_Sy"} <= set(columns)
+    assert {"x_s", "xd_s", "x_s_ref", "Q_supply", "p_A", "f_Sy"} <= set(columns)
+    assert "V_p_ref" not in columns and "V_p" not in columns
     for name, values in columns.items():
         assert np.all(np.isfinite(values)), name
     assert columns["time"][-1] > 10.0  # the whole course, not a run stopped by validity
