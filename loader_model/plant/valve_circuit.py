@@ -183,7 +183,8 @@ def valve_circuit_flows(
     -------
     dict
         ``valve_a`` (from the valve towards the piston side, before the load-holding valve),
-        ``valve_b`` (into the rod side), ``supply_flow`` (out of the supply), ``supply_pressure``,
+        ``valve_b`` (into the rod side), ``supply_flow`` (out of the supply; ``supply_a``,
+        ``supply_b`` its parts through P -> A and P -> B), ``supply_pressure``,
         ``check`` (tank into A), ``check_b`` (tank into B), ``relief`` (A to tank), ``leakage``
         (piston seals from A to B, behind closed load-holding valves only).
     """
@@ -209,6 +210,8 @@ def valve_circuit_flows(
         "valve_a": into_a - out_a,
         "valve_b": into_b - out_b,
         "supply_flow": into_a + into_b,
+        "supply_a": into_a,
+        "supply_b": into_b,
         "supply_pressure": p_s,
         "check": check,
         "check_b": check_b,
@@ -258,7 +261,8 @@ def valve_drive(
         x_s, xd_s, command, theta["omega_s"], theta["zeta_s"]
     )
     return common | {
-        "pump_flow": flows["supply_flow"],
+        # a closed load-holding valve blocks the line P -> A feeds: no flow out of the supply
+        "pump_flow": theta["holding_open"] * flows["supply_a"] + flows["supply_b"],
         "supply_pressure": flows["supply_pressure"],
         "valve_a": flows["valve_a"],
         "valve_b": flows["valve_b"],
