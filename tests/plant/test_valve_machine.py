@@ -95,3 +95,19 @@ def test_a_bad_valve_value_exits_with_one_line(
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "Traceback" not in err, err
     assert "[valve]: damping_ratio = 9.0 - is out of range; allowed: [0.05, 5]" in err, err
+
+
+def test_the_fmu_export_refuses_a_valve_circuit_in_one_line(
+    machine_args: list[str], tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from loader_model.fmu.build import find_compiler
+
+    try:
+        find_compiler()
+    except ValueError:
+        pytest.skip("no C compiler: export-fmu stops before reading the machine")
+    assert main(["export-fmu", *machine_args, str(tmp_path / "valve.fmu")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err, err
+    assert "[circuit] kind = 'valve'; the FMU export supports kind 'pump' only" in err, err
+    assert not (tmp_path / "valve.fmu").exists()
