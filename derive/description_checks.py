@@ -20,7 +20,14 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
-from derive.description_keys import JOINTS, KEYS, REQUIRED, unknown_key
+from derive.description_keys import (
+    CIRCUIT_KINDS,
+    CIRCUIT_SUPPLIES,
+    JOINTS,
+    KEYS,
+    REQUIRED,
+    unknown_key,
+)
 
 __all__ = ["MAX_BYTES", "DescriptionError", "check_entries", "read_description", "shown"]
 
@@ -231,6 +238,8 @@ def check_entries(where: str, raw: dict[str, Any]) -> None:
             check.fail(f"sensors.{point}.axes", axes, 'give one or both of "x", "y", once each')
         if "label" in item:
             check.text(f"sensors.{point}.label", item["label"])
+    if "circuit" in raw:
+        _check_circuit(check, raw["circuit"])
     for table, kind in (("parameters", "parameter"), ("tyres", "tyre")):
         for name, item in check.table(table, raw.get(table, {})).items():
             check.keys(f"{table}.{name}", item, kind)
@@ -242,3 +251,22 @@ def check_entries(where: str, raw: dict[str, Any]) -> None:
                     check.text(f"{table}.{name}.{key}", item[key])
             if "range" in item:
                 check.range(f"{table}.{name}.range", item["range"])
+
+
+def _check_circuit(check: _Checker, raw: Any) -> None:
+    """``[circuit]``: ``kind`` one of :data:`CIRCUIT_KINDS`; ``supply`` (a valve's only) one of
+    :data:`CIRCUIT_SUPPLIES`."""
+    check.keys("circuit", raw, "circuit")
+    item = check.table("circuit", raw)
+    kind = item.get("kind")
+    if kind not in CIRCUIT_KINDS:
+        check.fail("circuit.kind", kind, f"allowed: {', '.join(map(repr, CIRCUIT_KINDS))}")
+    if "supply" in item:
+        if kind != "valve":
+            check.fail("circuit.supply", item["supply"], "a supply is given for kind 'valve' only")
+        if item["supply"] not in CIRCUIT_SUPPLIES:
+            check.fail(
+                "circuit.supply",
+                item["supply"],
+                f"allowed: {', '.join(map(repr, CIRCUIT_SUPPLIES))}",
+            )

@@ -14,6 +14,8 @@ import difflib
 from collections.abc import Collection, Iterable, Mapping
 
 __all__ = [
+    "CIRCUIT_KINDS",
+    "CIRCUIT_SUPPLIES",
     "JOINTS",
     "KEYS",
     "REQUIRED",
@@ -27,7 +29,9 @@ JOINTS = ("free", "pin", "slider")
 #: The keys each table of a description takes: the top level, [machine], a body by its joint,
 #: an axle, an actuator, a sensor and a parameter.
 KEYS: dict[str, frozenset[str]] = {
-    "": frozenset({"machine", "bodies", "axles", "actuators", "sensors", "parameters", "tyres"}),
+    "": frozenset(
+        {"machine", "bodies", "axles", "actuators", "sensors", "parameters", "tyres", "circuit"}
+    ),
     "machine": frozenset({"name", "title", "point_range"}),
     "free": frozenset({"joint", "label", "reference", "coordinates", "mass", "inertia", "points"}),
     "pin": frozenset(
@@ -62,6 +66,15 @@ REQUIRED: dict[str, frozenset[str]] = {
     "parameter": frozenset({"unit", "description"}),
     "tyre": frozenset({"unit", "description", "range", "source"}),
 }
+
+# -- the lift circuit ([circuit], optional; absent: the pump of the paper) --
+#: The kinds of lift circuit: the paper's closed-circuit displacement-controlled pump, or a
+#: proportional directional valve in an open circuit.
+CIRCUIT_KINDS = ("pump", "valve")
+#: What feeds a valve circuit: a load-sensing pump or a constant-pressure source.
+CIRCUIT_SUPPLIES = ("load_sensing", "constant_pressure")
+KEYS["circuit"] = frozenset({"kind", "supply"})
+REQUIRED["circuit"] = frozenset({"kind"})
 
 
 def _shown(value: object, limit: int = 60) -> str:

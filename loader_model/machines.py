@@ -137,6 +137,13 @@ class MachineInfo:
     ``ae_A``, ...; :mod:`loader_model.parameters.tyres`), not inputs of the generated functions."""
     tyre_ranges: dict[str, tuple[float, float]] = dataclasses.field(default_factory=dict)
     """Allowed [low, high] of each of them (the description's ranges)."""
+    circuit: str = "pump"
+    """The lift circuit of the description's ``[circuit] kind``: ``"pump"`` (the paper's
+    closed-circuit displacement-controlled pump, the default) or ``"valve"`` (a proportional
+    directional valve in an open circuit, :mod:`loader_model.plant.valve_circuit`)."""
+    circuit_supply: str = "load_sensing"
+    """What feeds a valve circuit (``[circuit] supply``): ``"load_sensing"`` or
+    ``"constant_pressure"``."""
 
     def coordinate_unit(self, name: str) -> str:
         """The unit of coordinate ``name``: m for a length (:attr:`length_coordinates`), else rad."""
@@ -285,7 +292,10 @@ def _structure(raw: dict[str, Any]) -> dict[str, Any]:
     # sliding mounts (a suspended cab or seat), each F_<name>0
     locked = [f"F_{item.name}0" for item in cylinders if item.kind == "locked"]
     locked += [f"F_{name}0" for name, body in bodies.items() if body["joint"] == "slider"]
+    circuit = raw.get("circuit", {})
     return {
+        "circuit": circuit.get("kind", "pump"),
+        "circuit_supply": circuit.get("supply", "load_sensing"),
         "title": raw["machine"]["title"],
         "bodies": tuple(bodies),
         "joint_angles": tuple(b["joint_angle"] for b in bodies.values() if "joint_angle" in b),

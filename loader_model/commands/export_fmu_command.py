@@ -73,6 +73,11 @@ def run(args: argparse.Namespace) -> int:
             "(give --controller skyhook or virtual-accumulator)"
         )
     info = machine_from_arguments(args)
+    if info.circuit != "pump":
+        raise ValueError(
+            f"--machine {args.machine}: its lift circuit is [circuit] kind = {info.circuit!r}; "
+            "the FMU export supports kind 'pump' only (the paper's pump circuit)"
+        )
     if not info.is_default:
         return _run_machine(args, info.name)
     from loader_model.plant.plant_parameters import plant_parameter_vector

@@ -48,17 +48,28 @@ def run(args: argparse.Namespace) -> int:
     name = "" if info.is_default else f"{info.title}: "
     print(f"{name}Hydraulic plant, bucket load {args.load}")
     print(f"  static piston pressure p_A   {static['p_A'] / 1e5:10.2f} bar (gauge)")
-    print(f"  static rod pressure p_B      {static['p_B'] / 1e5:10.2f} bar (charge line)")
+    valve = info.circuit == "valve"
+    rod_side = "tank line" if valve else "charge line"
+    print(f"  static rod pressure p_B      {static['p_B'] / 1e5:10.2f} bar ({rod_side})")
     count = report.cylinder_count
     group = {1: "one cylinder", 2: "both cylinders"}.get(count, f"all {count} cylinders")
     print(f"  static cylinder force        {static['F_act'] / 1e3:10.2f} kN ({group})")
     print(f"  piston position              {static['x_piston'] * 1e3:10.1f} mm from retracted")
-    print(
-        f"  pump displacement to hold    {static['V_p_hold'] * 1e6:10.3f} cm³/rev "
-        "(Table 5 flow, valves open)"
-    )
+    if valve:
+        print(
+            f"  spool position to hold       {static['V_p_hold'] * 1e6:10.3f} µm "
+            "(spool leakage, load-holding valve open)"
+        )
+    else:
+        print(
+            f"  pump displacement to hold    {static['V_p_hold'] * 1e6:10.3f} cm³/rev "
+            "(Table 5 flow, valves open)"
+        )
     print(f"  k_eq (chambers closed)       {report.k_eq_n_per_m:10.4g} N/m (Eq. 28, errata 6)")
-    if not info.is_default:
+    if valve:
+        print("  (valve and supply: [valve] of the parameter file; check and relief valves,")
+        print("  friction, accumulator: the skid-steer's values, estimates for this machine)")
+    elif not info.is_default:
         print(
             "  (pump, valves, friction, accumulator: the skid-steer's values, estimates for "
             "this machine)"
@@ -66,6 +77,10 @@ def run(args: argparse.Namespace) -> int:
     print("\nModes of the coupled plant (frequency Hz / damping ratio):")
     for name, modes in report.modes.items():
         listed = ", ".join(f"{f:.2f}/{z:.3f}" for f, z in modes)
+        if valve:  # the same settings, the valve's actuator
+            name = name.replace("pump through", "valve through").replace(
+                "pump idle", "spool centred"
+            )
         print(f"  {name}:\n    {listed}")
     print("\nPressure loop p_A/p_A,ref (section 3.2, k_p = Table 3) beside Eq. 43:")
     for name, item in report.comparisons.items():

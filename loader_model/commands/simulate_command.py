@@ -215,14 +215,21 @@ def _print_events(events: tuple[Event, ...]) -> None:
 
 
 def _print_limits(result, plant) -> None:
-    """Print the share of the run the pump spends at its limits, and how the run ends."""
+    """Print the share of the run the pump (a valve's spool) spends at its limits, and how the
+    run ends."""
     from loader_model.simulation.settling import limit_duty, settle_measure
 
-    duty = limit_duty(result.columns, plant.parameter("V_p_max"), plant.parameter("Vd_p_max"))
-    print(
-        f"pump at its limits: command at V_p,max {duty.command:.1%} of the run, displacement "
-        f"rate at its limit {duty.rate:.1%}"
-    )
+    duty = limit_duty(result.columns, plant.command_limit(), plant.rate_limit())
+    if plant.layout.circuit == "valve":
+        print(
+            f"valve at its limits: spool command at its stroke {duty.command:.1%} of the run, "
+            f"spool rate at its limit {duty.rate:.1%}"
+        )
+    else:
+        print(
+            f"pump at its limits: command at V_p,max {duty.command:.1%} of the run, displacement "
+            f"rate at its limit {duty.rate:.1%}"
+        )
     settle = settle_measure(result.time_s, result.columns)
     if settle.judged:
         print(

@@ -104,7 +104,7 @@ def comfort_plants(
         case = comfort_case(load, None if params is None else params.get(load))
         system = comfort_system(case, road_class, speed_kmh / 3.6)
         names = plant_layout(case.machine).parameter_names
-        v_max = float(case.params[names.index("V_p_max")])
+        v_max = float(case.params[names.index(plant_layout(case.machine).command_limit)])
         p_norm = case.pressure_norm
         plant = DesignPlant.from_statespace(
             system,

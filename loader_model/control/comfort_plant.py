@@ -137,7 +137,8 @@ def comfort_case(load: str, params: np.ndarray | PlantScenario | None = None) ->
 def skyhook_structure(case: ComfortCase) -> Any:
     """The skyhook's linear equivalent at K_fb = 0 with input ``p_ref_n`` added and ŷ as outputs.
 
-    Inputs: sensor names, then ``p_ref_n``; outputs ``V_p_ref`` then :data:`MEASURED`.
+    Inputs: sensor names, then ``p_ref_n``; outputs the plant's command (``V_p_ref``, or a
+    valve circuit's ``x_s_ref``) then :data:`MEASURED`.
     """
     import control
 
@@ -167,7 +168,7 @@ def skyhook_structure(case: ComfortCase) -> Any:
         c,
         d,
         inputs=[*base.input_labels, "p_ref_n"],
-        outputs=["V_p_ref", *MEASURED],
+        outputs=[case.plant.input_labels[0], *MEASURED],
         states=list(base.state_labels),
         name="skyhook_structure",
     )
@@ -211,7 +212,8 @@ def comfort_system(
     machine: :func:`~loader_model.control.road_filter.road_shaping_filter`), ``M_d`` [N·m]
     (Fig. 12).
     Outputs: :data:`MEASURED`, :data:`PERFORMANCE`, then ``V_p``, ``p_A``, ``thetad_1``,
-    ``thetadd_1``, ``V_p_ref`` (unweighted, for limits and plots).
+    ``thetadd_1``, ``V_p_ref`` (unweighted, for limits and plots; ``V_p`` and ``V_p_ref`` are
+    the actuator's position and command: a valve circuit's spool x_s and its command, in m).
     """
     import control
 
@@ -227,12 +229,13 @@ def comfort_system(
     weights = seat_weightings()
     plant = case.plant.name
     noise = list(road.input_labels)
-    extra = [f"{plant}.{n}" for n in ("V_p", "p_A", "thetad_1", "thetadd_1")]
+    actuator, command = layout.actuator_state, case.plant.input_labels[0]
+    extra = [f"{plant}.{n}" for n in (actuator, "p_A", "thetad_1", "thetadd_1")]
     return control.interconnect(
         [case.plant, skyhook_structure(case), road, *weights],
         inplist=["skyhook_structure.p_ref_n", *(f"road.{n}" for n in noise), f"{plant}.M_d"],
         inputs=["p_ref_n", *noise, "M_d"],
-        outlist=[*MEASURED, *PERFORMANCE, *extra, "skyhook_structure.V_p_ref"],
+        outlist=[*MEASURED, *PERFORMANCE, *extra, f"skyhook_structure.{command}"],
         outputs=[*MEASURED, *PERFORMANCE, "V_p", "p_A", "thetad_1", "thetadd_1", "V_p_ref"],
         name=f"comfort_{case.load}",
         check_unused=False,

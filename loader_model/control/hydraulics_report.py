@@ -78,7 +78,7 @@ def _loop_scales(plant: PlantScenario) -> tuple[float, float, float]:
     from loader_model.plant.machine_parameters import pressure_norm
 
     norm = pressure_norm(plant.output("p_A"))
-    return norm, plant.parameter("V_p_max"), default_settings().k_p
+    return norm, plant.command_limit(), default_settings().k_p
 
 
 def hydraulics_report(

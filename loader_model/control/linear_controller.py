@@ -130,7 +130,8 @@ def closed_loop(plant: Any, controller: Any, name: str = "closed_loop") -> Any:
     Parameters
     ----------
     plant : control.StateSpace
-        Continuous plant with input ``V_p_ref``, outputs including
+        Continuous plant with the actuator's command first (``V_p_ref``, or a valve's
+        ``x_s_ref``: the controller's output drives it), outputs including
         :data:`~loader_model.control.sensors.SENSOR_NAMES`, and optionally exogenous inputs
         (:meth:`loader_model.plant.linear.PlantLinearisation.state_space`).
     controller : control.StateSpace
@@ -140,17 +141,30 @@ def closed_loop(plant: Any, controller: Any, name: str = "closed_loop") -> Any:
     Returns
     -------
     control.StateSpace
-        Inputs: the plant's inputs other than ``V_p_ref``; outputs: the plant's outputs, then
-        ``V_p_ref``.
+        Inputs: the plant's inputs other than the command; outputs: the plant's outputs, then
+        the command.
     """
     import control
 
     if controller.dt not in (0, None) and plant.dt in (0, None):
         plant = control.sample_system(plant, controller.dt, method="zoh", name=plant.name)
-    inputs = [n for n in plant.input_labels if n != "V_p_ref"]
+    command = plant.input_labels[0]  # V_p_ref, or a valve circuit's spool command x_s_ref
+    if list(controller.output_labels) != [command]:
+        controller = control.ss(
+            controller.A,
+            controller.B,
+            controller.C,
+            controller.D,
+            controller.dt,
+            inputs=list(controller.input_labels),
+            outputs=[command],
+            states=list(controller.state_labels),
+            name=controller.name,
+        )
+    inputs = [n for n in plant.input_labels if n != command]
     return control.interconnect(
         [plant, controller],
         inputs=inputs,
-        outputs=[*plant.output_labels, "V_p_ref"],
+        outputs=[*plant.output_labels, command],
         name=name,
     )

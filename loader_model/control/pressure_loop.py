@@ -52,10 +52,11 @@ def pressure_loop(
     Parameters
     ----------
     plant : control.StateSpace
-        Linearised plant with input ``V_p_ref`` [m³/rev] and output ``p_A`` [Pa]
+        Linearised plant with the actuator's command as its first input (``V_p_ref`` [m³/rev],
+        or a valve circuit's spool command ``x_s_ref`` [m]) and output ``p_A`` [Pa]
         (:meth:`loader_model.plant.linear.PlantLinearisation.state_space`).
     pressure_norm_pa, max_displacement_m3_rev : float
-        ‖p_A‖∞ of the load case and V_p,max of the pump.
+        ‖p_A‖∞ of the load case and V_p,max of the pump (a valve's spool stroke [m]).
     k_p : float
         Loop gain on normalised signals (Table 3: 0.5).
     highpass_rad_s : float or None
@@ -72,14 +73,15 @@ def pressure_loop(
             raise ValueError(f"{name} = {value!r}; allowed: a finite number > 0")
     if highpass_rad_s is not None and (not np.isfinite(highpass_rad_s) or highpass_rad_s <= 0):
         raise ValueError(f"highpass_rad_s = {highpass_rad_s!r}; allowed: None or a number > 0")
-    drive = control.ss(plant[["p_A"], ["V_p_ref"]], name="drive")
-    drive.set_inputs(["V_p_ref"]), drive.set_outputs(["p_A"])
+    command = plant.input_labels[0]  # V_p_ref, or a valve circuit's spool command x_s_ref
+    drive = control.ss(plant[["p_A"], [command]], name="drive")
+    drive.set_inputs([command]), drive.set_outputs(["p_A"])
     feedback = _pressure_feedback(pressure_norm_pa, max_displacement_m3_rev, k_p, highpass_rad_s)
     # V_p,ref = k_p V_max (p_A,ref − HP(p_A)) / norm: the reference gain is minus the
     # high-frequency gain on p_A (the high-pass passes p_A with gain 1 at high frequency)
     gain = -float(np.squeeze(feedback.D))
     reference = control.ss([], [], [], [[gain]], inputs=["p_A_ref"], outputs=["u_ref"], name="ref")
-    summing = control.summing_junction(inputs=["u_ref", "u_fb"], output="V_p_ref", name="sum")
+    summing = control.summing_junction(inputs=["u_ref", "u_fb"], output=command, name="sum")
     return control.interconnect(
         [drive, feedback, reference, summing],
         inputs=["p_A_ref"],

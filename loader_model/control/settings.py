@@ -57,10 +57,10 @@ SETTINGS_NAMES: tuple[str, ...] = (
     "a_norm",  # [m/s^2]
     "alpha_norm",  # [rad/s^2]
     "phi_norm",  # [rad]
-    "u_limit",  # command saturation [m^3/rev]
+    "u_limit",  # command saturation [m^3/rev] (a valve's: m of spool)
     "p_norm",  # ‖p_A‖∞ of the load case [Pa]
-    "V_p_max",  # [m^3/rev]
-    "u_hold",  # holding command u0 [m^3/rev]
+    "V_p_max",  # the actuator's limit: V_p,max [m^3/rev], or a valve's spool stroke [m]
+    "u_hold",  # holding command u0 [m^3/rev] (a valve's: spool position [m])
     "g",  # gravity [m/s^2]
     "N_x",  # x of the second accelerometer N relative to H [m]
     "phi_0",  # boom angle of the operating point (plant output phi) [rad]
@@ -244,7 +244,8 @@ def settings_vector(
     pressure_norm : float
         ‖p_A‖∞ of the load case [Pa] (``BucketLoad.pressure_normalisation``).
     max_displacement : float
-        V_p,max [m³/rev].
+        The actuator's command limit: V_p,max [m³/rev] of the pump, or the spool stroke
+        x_s,max [m] of a valve circuit (the pressure loop's command is k_p times it).
     hold_command : float
         Feed-forward command u0 that holds the boom against leakage [m³/rev].
     gravity : float
@@ -297,7 +298,8 @@ def settings_vector_for_plant(
     hold_command: float | None = None,
     machine: str | None = None,
 ) -> np.ndarray:
-    """:func:`settings_vector` with V_p,max, g and N_x from the plant parameter vector ``params``
+    """:func:`settings_vector` with the command limit (V_p,max, or a valve's spool stroke
+    x_s,max), g and N_x from the plant parameter vector ``params``
     and the holding command from its static equilibrium (boom angle φ0 = 0, the plant's origin).
 
     ``hold_command``: the equilibrium's u0 when the caller has it
@@ -308,13 +310,14 @@ def settings_vector_for_plant(
     from loader_model.plant.layout import plant_layout
 
     machine = machine or DEFAULT_MACHINE
-    names = plant_layout(machine).parameter_names
+    layout = plant_layout(machine)
+    names = layout.parameter_names
     named = dict(zip(names, np.asarray(params, dtype=float), strict=True))
     hold = static_state(params, machine)[1] if hold_command is None else float(hold_command)
     return settings_vector(
         settings,
         pressure_norm=pressure_norm,
-        max_displacement=float(named["V_p_max"]),
+        max_displacement=float(named[layout.command_limit]),
         hold_command=hold,
         gravity=float(named["g"]),
         accelerometer_x=float(named["N_x"]),

@@ -212,7 +212,7 @@ class _Problem:
                 return f"{condition.label}: failed run: {error}"
             self.simulations += 1
             plant = scenario.plant
-            duty = limit_duty(run.columns, plant.parameter("V_p_max"), plant.parameter("Vd_p_max"))
+            duty = limit_duty(run.columns, plant.command_limit(), plant.rate_limit())
             settle = settle_measure(run.time_s, run.columns)
             if settle.persistent and settle.persistent_above(
                 rest_level(design, self.envelope, condition.load)  # only where it matters

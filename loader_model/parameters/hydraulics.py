@@ -11,6 +11,7 @@ from dataclasses import dataclass, field
 
 from loader_model.parameters.accumulator import AccumulatorParameters
 from loader_model.parameters.fields import Range, TypedLeaves, integer, si
+from loader_model.parameters.valve import ValveParameters
 
 _DEAD_VOLUME = Range(1e-6, 0.05, reason="hose, tube and port volume per cylinder of 1 ml to 50 l")
 
@@ -22,6 +23,7 @@ __all__ = [
     "HydraulicParameters",
     "LeakageParameters",
     "PumpParameters",
+    "ValveParameters",
 ]
 
 

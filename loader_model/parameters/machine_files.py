@@ -11,7 +11,11 @@ for the shipped values::
     [hydraulics]  # bulk_modulus and charge_pressure (fields of HydraulicParameters)
     [tyres]       # each axle's free radius and tandem cam (loader_model.parameters.tyres)
     R_A = { value = 0.45, unit = "m", source = "..." }
+    [valve]       # a valve circuit's (fields of ValveParameters; its [hydraulics]: bulk_modulus)
     [loads.empty] # a bucket load case: values of [model] it replaces (m_3, J_3, Q_x, ...)
+
+``[valve]`` is required for a machine whose description has ``[circuit] kind = "valve"`` and
+refused for any other (its rod side is at the tank pressure, so no charge pressure is given).
 
 Every value is checked on loading: a missing or unknown name, a wrong unit (the generated
 ``PARAMETER_UNITS``; the schema's units for the cylinders), no source, or a value outside the
@@ -38,6 +42,7 @@ from loader_model.machines import MachineInfo, machine
 from loader_model.parameters.checks import MAX_ROD_TO_PISTON_RATIO
 from loader_model.parameters.hydraulics import CylinderParameters, HydraulicParameters
 from loader_model.parameters.tyres import tyre_table
+from loader_model.parameters.valve import ValveParameters, valve_table
 
 __all__ = [
     "HYDRAULIC_NAMES",
@@ -52,7 +57,9 @@ __all__ = [
 
 #: The fields of :class:`HydraulicParameters` a machine file gives (the rest is the plant's).
 HYDRAULIC_NAMES = ("bulk_modulus", "charge_pressure")
-_SECTIONS = {"model", "cylinders", "hydraulics", "tyres", "loads"}
+#: The fields of :class:`HydraulicParameters` a valve circuit's file gives.
+VALVE_HYDRAULIC_NAMES = ("bulk_modulus",)
+_SECTIONS = {"model", "cylinders", "hydraulics", "tyres", "valve", "loads"}
 
 
 @dataclass(frozen=True)
@@ -68,7 +75,7 @@ class MachineParameters:
     cylinders : CylinderParameters
         The driven lift cylinder group (count, bore, rod, stroke, lengths, dead volumes).
     hydraulics : dict
-        ``bulk_modulus`` [Pa] and ``charge_pressure`` [Pa].
+        ``bulk_modulus`` [Pa] and (pump circuit) ``charge_pressure`` [Pa].
     loads : dict
         Load case name -> the model values it replaces.
     sources : dict
@@ -78,6 +85,8 @@ class MachineParameters:
     tyres : dict
         Each axle's tyre road geometry by per-axle name (``R_A`` [m], ``ae_A``, ``be_A``,
         ``ce_A``, ``ls_A``; :mod:`loader_model.parameters.tyres`).
+    valve : ValveParameters or None
+        The valve circuit's values (``[valve]``); None for the pump circuit.
     """
 
     machine: str
@@ -88,6 +97,15 @@ class MachineParameters:
     sources: dict[str, str] = field(repr=False, default_factory=dict)
     origin: str = ""
     tyres: dict[str, float] = field(default_factory=dict)
+    valve: ValveParameters | None = None
+
+    @property
+    def rod_side_pressure(self) -> float:
+        """Pressure [Pa gauge] of the rod side at rest: the charge pressure of the pump
+        circuit, the tank pressure of a valve circuit."""
+        if self.valve is not None:
+            return self.valve.tank_pressure
+        return self.hydraulics["charge_pressure"]
 
 
 def _entry(where: str, name: str, raw: Any, unit: str) -> tuple[Any, str]:
@@ -187,9 +205,11 @@ def parse_machine_parameters(text: str, info: MachineInfo, origin: str) -> Machi
             f"{MAX_ROD_TO_PISTON_RATIO} x piston_diameter {cyl['piston_diameter']!r} m"
         )
     hyd_raw = _section(origin, raw, "hydraulics")
-    _names(f"{origin} [hydraulics]", hyd_raw, set(HYDRAULIC_NAMES), set(HYDRAULIC_NAMES))
+    valve = info.circuit == "valve"
+    hyd_names = VALVE_HYDRAULIC_NAMES if valve else HYDRAULIC_NAMES
+    _names(f"{origin} [hydraulics]", hyd_raw, set(hyd_names), set(hyd_names))
     hydraulics = {}
-    for name in HYDRAULIC_NAMES:
+    for name in hyd_names:
         hydraulics[name], sources[f"hydraulics.{name}"] = _schema_value(
             f"{origin} [hydraulics]", HydraulicParameters, name, hyd_raw[name]
         )
@@ -207,8 +227,17 @@ def parse_machine_parameters(text: str, info: MachineInfo, origin: str) -> Machi
             loads[case][name], sources[f"loads.{case}.{name}"] = _model_value(
                 where, info, name, item
             )
+    valve_values = valve_table(origin, raw, info, sources)
     return MachineParameters(
-        info.name, model, CylinderParameters(**cyl), hydraulics, loads, sources, origin, tyres
+        info.name,
+        model,
+        CylinderParameters(**cyl),
+        hydraulics,
+        loads,
+        sources,
+        origin,
+        tyres,
+        valve_values,
     )
 
 

@@ -133,9 +133,20 @@ def build_energy(symbol: type = ca.SX, machine: str = DEFAULT_MACHINE) -> ca.Fun
     elastic forces, whose product with ``road_velocity`` is the part of P_road that depends on it.
     For another ``machine`` the sizes are its own, and its locked cylinders add an entry to
     ``E_parts`` and ``P_loss`` (:func:`energy_names`).
+
+    Raises
+    ------
+    ValueError
+        For a machine with a valve circuit (its supply, meter-out and spool-leakage terms are
+        not booked here).
     """
     layout = plant_layout(machine)
     info = layout.machine
+    if layout.circuit != "pump":
+        raise ValueError(
+            f"machine {info.name!r} has the circuit kind {layout.circuit!r}; the energy balance "
+            "books the pump circuit's terms only (allowed: kind 'pump')"
+        )
     n_p, n_a, n_w = layout.n_coordinates, layout.n_anchors, len(info.road_names)
     x = symbol.sym("x", len(layout.state_names))
     u = symbol.sym("u", len(layout.input_names))

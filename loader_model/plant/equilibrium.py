@@ -11,7 +11,12 @@ follow in closed form (totals over the n cylinders; friction and end stops vanis
 
 (through open load-holding valves the pump holds the boom against Table 5's pump-side flow,
 so the rod side needs no charge flow; with the pump switched off, the valves shut or the
-load-holding valves closed, V_p0 = 0: :mod:`loader_model.plant.circuit`), and the accumulator
+load-holding valves closed, V_p0 = 0: :mod:`loader_model.plant.circuit`). A valve circuit
+(:mod:`loader_model.plant.valve_circuit`) has its rod side at the tank pressure, p_B0 = p_T,
+and holds the boom with the spool opened just enough that the meter-in edge feeds the spool's
+leakage G_s (p_A0 − p_T) to tank: o = G_s (p_A0 − p_T) / (C_d w √(2/ρ) r(Δp)), with Δp the
+compensated drop and r the orifice root, and x_s0 = x_0 + the inverse of the edge's C¹ ramp
+(x_s0 = 0 with the load-holding valve closed). The accumulator
 holds the oil volume at which its gas pressure equals p_A0 (inverse of the polytropic law), so
 no oil flows through its orifice. The occupant's states are zero (measured from the static
 deflection, :mod:`loader_model.plant.occupant`).
@@ -24,11 +29,13 @@ quasi-static state (ṗ_A(x0) = −K_oil Q_seal / V_A; exact with the leakage sw
 from __future__ import annotations
 
 from functools import cache
+from typing import Any
 
 import casadi as ca
 import numpy as np
 
 from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
+from loader_model.plant import valve_circuit as valve
 from loader_model.plant.components import ATMOSPHERIC_PRESSURE_PA
 from loader_model.plant.layout import plant_layout
 from loader_model.plant.occupant import OCCUPANT_STATE_NAMES
@@ -37,15 +44,37 @@ from loader_model.vehicle.cylinder import static_piston_pressure
 __all__ = ["equilibrium_function", "static_state"]
 
 
-def _build(symbol: type = ca.SX, machine: str = DEFAULT_MACHINE) -> ca.Function:
-    layout = plant_layout(machine)
+def _valve_hold(theta: dict[str, Any], p_a: Any, holding: Any) -> Any:
+    """The spool position that feeds A the spool's leakage to tank at p_A0 (valve circuit)."""
+    leak = holding * theta["G_spool"] * (p_a - theta["p_tank"])
+    supply = valve.supply_pressure(theta, p_a, theta["p_tank"])
+    available = supply - p_a
+    compensated = valve.smooth_min(available, theta["dp_comp"], valve.PRESSURE_BAND_PA)
+    drop = theta["compensated"] * compensated + (1 - theta["compensated"]) * available
+    drop = valve.smooth_max(drop, 0, valve.PRESSURE_BAND_PA)
+    per_opening = theta["C_d_s"] * theta["w_s"] * ca.sqrt(2 / theta["rho_oil"])
+    opening = leak / (per_opening * valve.orifice_root(drop))
+    band = valve.OPENING_BAND_M  # the inverse of the edge's C¹ ramp
+    travel = ca.if_else(opening <= band / 2, ca.sqrt(2 * band * opening), opening + band / 2)
+    return ca.if_else(leak > 0, theta["x_s_lap"] + travel, 0)
+
+
+def _build(
+    symbol: type = ca.SX, machine: str = DEFAULT_MACHINE, circuit: str | None = None
+) -> ca.Function:
+    layout = plant_layout(machine, circuit)
     params = symbol.sym("params", len(layout.parameter_names))
     theta = {name: params[i] for i, name in enumerate(layout.parameter_names)}
     _, force = layout.machine.function("complete_parameters")(params[: layout.n_mechanical])
-    p_b = theta["p_charge"]
-    p_a = static_piston_pressure(force, theta["n_cyl"], theta["d_piston"], theta["d_rod"], p_b)
     holding = theta["pump_on"] * theta["valves_on"] * theta["leakage_on"] * theta["holding_open"]
-    v_p = holding * theta["k_Lp"] * (p_a - p_b) / theta["n_pump"]
+    if layout.circuit == "valve":
+        p_b = theta["p_tank"]
+        p_a = static_piston_pressure(force, theta["n_cyl"], theta["d_piston"], theta["d_rod"], p_b)
+        v_p = _valve_hold(theta, p_a, holding)
+    else:
+        p_b = theta["p_charge"]
+        p_a = static_piston_pressure(force, theta["n_cyl"], theta["d_piston"], theta["d_rod"], p_b)
+        v_p = holding * theta["k_Lp"] * (p_a - p_b) / theta["n_pump"]
     gas = theta["n_acc"] * theta["V_0"]
     absolute_0 = theta["p_0"] + ATMOSPHERIC_PRESSURE_PA
     absolute_a = p_a + ATMOSPHERIC_PRESSURE_PA
@@ -64,14 +93,15 @@ def _build(symbol: type = ca.SX, machine: str = DEFAULT_MACHINE) -> ca.Function:
 
 
 @cache
-def _equilibrium_function(machine: str) -> ca.Function:
-    return _build(ca.SX, machine)
+def _equilibrium_function(machine: str, circuit: str | None = None) -> ca.Function:
+    return _build(ca.SX, machine, circuit)
 
 
-def equilibrium_function(machine: str = DEFAULT_MACHINE) -> ca.Function:
-    """``plant_equilibrium(params) -> (x0, u0, F_act0)``: static state, the pump command that
-    holds it, and the cylinder force (SX, built once per machine)."""
-    return _equilibrium_function(resolve_machine_name(machine))
+def equilibrium_function(machine: str = DEFAULT_MACHINE, circuit: str | None = None) -> ca.Function:
+    """``plant_equilibrium(params) -> (x0, u0, F_act0)``: static state, the actuator command
+    that holds it, and the cylinder force (SX, built once per machine; ``circuit`` as
+    :func:`~loader_model.plant.layout.plant_layout`)."""
+    return _equilibrium_function(resolve_machine_name(machine), circuit)
 
 
 def static_state(params: np.ndarray, machine: str = DEFAULT_MACHINE) -> tuple[np.ndarray, float]:

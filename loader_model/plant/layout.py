@@ -11,6 +11,12 @@ they are exactly those of the paper's plant (the module constants ``STATE_NAMES`
     y = (ẋ_H, ẏ_H, θ̇1, φ, <further joint angles>, f_<sensor><axis>..., θ̈1, p_A, p_B, F_act,
          x_piston, V_p, Q_pump, F_<axle>y..., p_acc, f_Px, f_Py)
 
+The lift circuit (the description's ``[circuit] kind``) names the actuator: the pump's
+displacement V_p [m³/rev] and its rate, command ``V_p_ref``, limit ``V_p_max``; or a valve's
+spool position x_s [m] and its rate, command ``x_s_ref``, limit the spool stroke ``x_s_max``
+(:mod:`loader_model.plant.valve_circuit`), output ``Q_supply`` in place of ``Q_pump``. The
+lengths and orders of x, u and y are the same for both.
+
 φ is the boom's angle to the chassis (the first pinned body); a machine with further pinned
 bodies (the wheel loader's bucket, ψ) adds their joint angles after it. The specific forces are
 those of the description's sensor points, in its order and axes.
@@ -24,11 +30,15 @@ from dataclasses import dataclass
 from loader_model.machines import DEFAULT_MACHINE, MachineInfo, machine
 from loader_model.plant.occupant import OCCUPANT_PARAMETERS, OCCUPANT_STATE_NAMES
 
-__all__ = ["HYDRAULIC_STATE_NAMES", "PlantLayout", "plant_layout"]
+__all__ = ["CIRCUITS", "HYDRAULIC_STATE_NAMES", "PlantLayout", "plant_layout"]
 
 #: Hydraulic states after the mechanical ones (chamber pressures, pump displacement, accumulator).
 HYDRAULIC_STATE_NAMES: tuple[str, ...] = ("p_A", "p_B", "V_p", "Vd_p", "V_acc")
-_DRIVE_OUTPUTS = ("thetadd_1", "p_A", "p_B", "F_act", "x_piston", "V_p", "Q_pump")
+#: Per circuit kind: (actuator state, its rate, command, command limit, rate limit, flow output).
+CIRCUITS: dict[str, tuple[str, str, str, str, str, str]] = {
+    "pump": ("V_p", "Vd_p", "V_p_ref", "V_p_max", "Vd_p_max", "Q_pump"),
+    "valve": ("x_s", "xd_s", "x_s_ref", "x_s_max", "xd_s_max", "Q_supply"),
+}
 
 
 @dataclass(frozen=True)
@@ -53,6 +63,23 @@ class PlantLayout:
     output_names: tuple[str, ...]
     parameter_names: tuple[str, ...]
     sensor_outputs: tuple[tuple[str, int, int], ...]
+    circuit: str = "pump"
+
+    @property
+    def command_limit(self) -> str:
+        """Name of the parameter that saturates the actuator and its command (``V_p_max`` of
+        the pump, the spool stroke ``x_s_max`` of a valve)."""
+        return CIRCUITS[self.circuit][3]
+
+    @property
+    def rate_limit(self) -> str:
+        """Name of the parameter that limits the actuator's rate (``Vd_p_max``, ``xd_s_max``)."""
+        return CIRCUITS[self.circuit][4]
+
+    @property
+    def actuator_state(self) -> str:
+        """Name of the actuator's state (``V_p`` or ``x_s``), two after ``p_A``."""
+        return CIRCUITS[self.circuit][0]
 
     @property
     def n_coordinates(self) -> int:
@@ -92,17 +119,26 @@ def _joint_outputs(info: MachineInfo) -> tuple[str, ...]:
 
 
 @functools.cache
-def plant_layout(name: str = DEFAULT_MACHINE) -> PlantLayout:
+def plant_layout(name: str = DEFAULT_MACHINE, circuit: str | None = None) -> PlantLayout:
     """The plant layout of machine ``name`` (:func:`loader_model.machines.machine`; cached).
+
+    ``circuit`` (``"pump"`` or ``"valve"``, default the description's ``[circuit] kind``)
+    chooses the lift circuit; another one than the description's builds the same mechanics
+    with that circuit (for studies and tests).
 
     Raises
     ------
     ValueError
-        For an unknown machine, or one without the sensor at its seat point.
+        For an unknown machine or circuit, or a machine without the sensor at its seat point.
     """
     from loader_model.plant.plant_parameters import HYDRAULIC_PARAMETERS
+    from loader_model.plant.valve_circuit import VALVE_PARAMETERS
 
     info = machine(name)
+    circuit = info.circuit if circuit is None else circuit
+    if circuit not in CIRCUITS:
+        raise ValueError(f"circuit {circuit!r} is not allowed; allowed: {', '.join(CIRCUITS)}")
+    state, rate, command, _, _, flow = CIRCUITS[circuit]
     if info.seat_point not in info.sensor_points:
         raise ValueError(
             f"machine {info.name!r}: its seat point {info.seat_point!r} has no sensor; the "
@@ -117,7 +153,11 @@ def plant_layout(name: str = DEFAULT_MACHINE) -> PlantLayout:
         *info.coordinate_names,
         *info.rate_names,
         *info.anchor_names,
-        *HYDRAULIC_STATE_NAMES,
+        "p_A",
+        "p_B",
+        state,
+        rate,
+        "V_acc",
         *OCCUPANT_STATE_NAMES,
     )
     outputs = (
@@ -126,21 +166,42 @@ def plant_layout(name: str = DEFAULT_MACHINE) -> PlantLayout:
         "thetad_1",
         *_joint_outputs(info),
         *(item[0] for item in sensors),
-        *_DRIVE_OUTPUTS,
+        *("thetadd_1", "p_A", "p_B", "F_act", "x_piston", state, flow),
         *(f"F_{axle}y" for axle in info.axles),
         "p_acc",
         "f_Px",
         "f_Py",
     )
-    parameters = info.parameter_names + tuple(
-        item[0] for item in HYDRAULIC_PARAMETERS + OCCUPANT_PARAMETERS
-    )
+    hydraulic = HYDRAULIC_PARAMETERS if circuit == "pump" else _valve_entries(VALVE_PARAMETERS)
+    parameters = info.parameter_names + tuple(item[0] for item in hydraulic + OCCUPANT_PARAMETERS)
     return PlantLayout(
         machine=info,
         state_names=states,
-        input_names=("V_p_ref",),
+        input_names=(command,),
         exogenous_names=info.exogenous_names,
         output_names=outputs,
         parameter_names=parameters,
         sensor_outputs=sensors,
+        circuit=circuit,
     )
+
+
+#: Entries of the pump circuit that a valve circuit does not have (charge line, Table 5's
+#: pump-side regression flow, the pump and its displacement loop).
+_PUMP_ONLY = frozenset(
+    {"p_charge", "G_charge", "k_Lp", "k_Lv", "V_p_max", "n_pump", "omega_p", "zeta_p"}
+    | {"Vd_p_max"}
+)
+
+
+def _valve_entries(
+    valve: tuple[tuple[str, str, str], ...],
+) -> tuple[tuple[str, str, str], ...]:
+    """The valve circuit's parameters: the pump circuit's shared entries (cylinders, oil,
+    check and relief valves, seals, friction, accumulator) with the valve's before the
+    accumulator, the switches last."""
+    from loader_model.plant.plant_parameters import HYDRAULIC_PARAMETERS
+
+    shared = [item for item in HYDRAULIC_PARAMETERS if item[0] not in _PUMP_ONLY]
+    at = [item[0] for item in shared].index("n_acc")
+    return (*shared[:at], *valve, *shared[at:])

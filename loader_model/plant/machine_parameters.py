@@ -9,6 +9,10 @@ its skid-steer only. They are taken from the skid-steer's shipped defaults
 rule that keeps the accumulator working: its precharge is the skid-steer's fraction of the
 static piston pressure (50 bar of 89 bar, 0.56) applied to the machine's lightest load case, so
 the accumulator holds oil in every load case (a precharge above the static pressure holds none).
+
+A machine with a valve circuit (``[circuit] kind = "valve"``) takes its valve, compensator and
+supply from the ``[valve]`` table of its file (:func:`valve_plant_entries`) and has no pump,
+charge line or Table 5 regression flow; the rest is as above.
 """
 
 from __future__ import annotations
@@ -18,6 +22,7 @@ from functools import cache
 import numpy as np
 
 from loader_model.machines import machine as machine_info
+from loader_model.parameters.valve import ValveParameters
 from loader_model.plant.layout import plant_layout
 from loader_model.plant.plant_parameters import PlantOptions, plant_parameter_vector
 
@@ -27,6 +32,7 @@ __all__ = [
     "machine_plant_parameter_vector",
     "precharge_pressure",
     "pressure_norm",
+    "valve_plant_entries",
 ]
 
 #: Accumulator precharge / static piston pressure of the lightest load (the skid-steer's 50/89).
@@ -60,6 +66,33 @@ def precharge_pressure(name: str, params: object = None) -> float:
     cases = (None, *values.loads)
     lowest = min(machine_static_equilibrium(name, values, case)["p_A0"] for case in cases)
     return PRECHARGE_FRACTION * lowest
+
+
+def valve_plant_entries(valve: ValveParameters, supply: str = "load_sensing") -> dict[str, float]:
+    """The valve circuit's entries of the plant parameter vector
+    (:data:`~loader_model.plant.valve_circuit.VALVE_PARAMETERS`) from a ``[valve]`` table and
+    the description's ``[circuit] supply`` (``"load_sensing"`` or ``"constant_pressure"``)."""
+    if supply not in ("load_sensing", "constant_pressure"):
+        raise ValueError(
+            f"supply {supply!r} is not allowed; allowed: 'load_sensing', 'constant_pressure'"
+        )
+    return {
+        "x_s_max": valve.spool_stroke,
+        "w_s": valve.area_gradient,
+        "x_s_lap": valve.overlap,
+        "C_d_s": valve.discharge_coefficient,
+        "dp_comp": valve.compensator_setting,
+        "compensated": float(valve.compensated),
+        "omega_s": valve.natural_frequency_rad_s,
+        "zeta_s": valve.damping_ratio,
+        "xd_s_max": valve.stroke_rate_limit,
+        "G_spool": valve.leakage_conductance,
+        "p_tank": valve.tank_pressure,
+        "p_supply_max": valve.supply_max_pressure,
+        "dp_LS": valve.load_sensing_margin,
+        "Q_supply_max": valve.supply_max_flow,
+        "load_sensing": float(supply == "load_sensing"),
+    }
 
 
 def machine_plant_parameter_vector(
@@ -110,9 +143,12 @@ def machine_plant_parameter_vector(
         "k_end": cyl.end_stop_stiffness,
         "c_end": cyl.end_stop_damping,
         "K_oil": values.hydraulics["bulk_modulus"],
-        "p_charge": values.hydraulics["charge_pressure"],
         "p_0": precharge_pressure(info.name, values),
     }
+    if values.valve is not None:
+        entries |= valve_plant_entries(values.valve, info.circuit_supply)
+    else:
+        entries["p_charge"] = values.hydraulics["charge_pressure"]
     entries |= (options or PlantOptions()).switches()
     names = plant_layout(info.name).parameter_names
     missing = [n for n in names if n not in entries]

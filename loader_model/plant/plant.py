@@ -36,6 +36,13 @@ the cylinder). The pump's
 displacement loop is the second-order system of Fig. 9 with its command saturated at ±V_p,max
 and its rate limited to ±V̇_p,max (Table 2, errata 8), each by the C¹ saturation of
 :mod:`loader_model.plant.components` (exact below 99 % of the limit).
+
+A machine whose description has ``[circuit] kind = "valve"`` has a proportional directional
+valve in place of the pump (:mod:`loader_model.plant.valve_circuit`): the states V_p, V̇_p become
+the spool x_s, ẋ_s (the same loop, saturation and rate limit, with ω_s, ζ_s, x_s,max, ẋ_s,max),
+the input its command x_s,ref [m]; the valve's flow reaches A through the load-holding valve
+and B directly, the rod side drains to the tank line instead of the charge line, and Table 5's
+pump-side flow is not part of it.
 """
 
 from __future__ import annotations
@@ -50,6 +57,7 @@ from loader_model.plant import components as hyd
 from loader_model.plant.circuit import circuit_flows
 from loader_model.plant.layout import PlantLayout, plant_layout
 from loader_model.plant.occupant import occupant_dynamics
+from loader_model.plant.valve_circuit import valve_drive
 
 __all__ = [
     "EXOGENOUS_NAMES",
@@ -90,7 +98,9 @@ def hydraulic_drive(
     ẋ_cyl, chamber volumes ``V_A``, ``V_B``, flows ``pump_flow``, ``charge``, ``check``,
     ``relief``, ``leakage``, ``q_acc`` (into the orifice, at chamber A's density),
     ``accumulator_rate`` (its oil volume rate), forces ``friction`` and ``end_stop``.
-    ``layout`` (default the skid-steer's) gives the machine and its state indices.
+    ``layout`` (default the skid-steer's) gives the machine, its circuit and its state indices;
+    a valve circuit's drive has ``pump_flow`` the supply's flow and adds ``supply_pressure``,
+    ``valve_a``, ``valve_b`` and ``check_b`` (:mod:`loader_model.plant.valve_circuit`).
     """
     layout = layout or _SKID_STEER
     n_p, h = layout.n_coordinates, layout.index("p_A")
@@ -112,6 +122,10 @@ def hydraulic_drive(
         position, velocity, theta["stroke"], theta["k_end"], theta["c_end"]
     )
     force = n * (piston * p_a - annulus * p_b) - friction + end_stop
+    if layout.circuit == "valve":
+        common = {"force": force, "position": position, "velocity": velocity}
+        common |= {"V_A": n * v_a, "V_B": n * v_b, "friction": friction, "end_stop": end_stop}
+        return valve_drive(x[h : h + 5], u, theta, common, n * piston, n * annulus)
     v_max, vd_max = theta["V_p_max"], theta["Vd_p_max"]
     displacement = hyd.saturate(v_p, v_max, _SATURATION_BAND * v_max)
     flows = circuit_flows(theta, p_a, p_b, velocity, displacement)
@@ -166,7 +180,9 @@ def hydraulic_drive(
     }
 
 
-def build_plant(symbol: type = ca.SX, machine: str = DEFAULT_MACHINE) -> ca.Function:
+def build_plant(
+    symbol: type = ca.SX, machine: str = DEFAULT_MACHINE, circuit: str | None = None
+) -> ca.Function:
     """Build the plant Function ``plant(x, u, w, params) -> (xdot, y)`` (module docstring).
 
     Parameters
@@ -176,8 +192,10 @@ def build_plant(symbol: type = ca.SX, machine: str = DEFAULT_MACHINE) -> ca.Func
     machine : str
         A machine of :func:`loader_model.machines.list_machines` (default the skid-steer); its
         names and sizes: :func:`plant_layout`.
+    circuit : str, optional
+        ``"pump"`` or ``"valve"``: the lift circuit (default the machine description's).
     """
-    layout = plant_layout(machine)
+    layout = plant_layout(machine, circuit)
     info = layout.machine
     n_p, n_a, n_w = layout.n_coordinates, layout.n_anchors, len(info.road_names)
     x = symbol.sym("x", len(layout.state_names))

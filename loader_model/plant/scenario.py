@@ -146,6 +146,15 @@ class PlantScenario:
             )
         return float(self.params[names.index(name)])
 
+    def command_limit(self) -> float:
+        """The saturation of the actuator and its command: the pump's V_p,max [m³/rev], or a
+        valve's spool stroke x_s,max [m] (:attr:`PlantLayout.command_limit`)."""
+        return self.parameter(self.layout.command_limit)
+
+    def rate_limit(self) -> float:
+        """The actuator's rate limit: V̇_p,max [m³/(rev·s)] or a spool's ẋ_s,max [m/s]."""
+        return self.parameter(self.layout.rate_limit)
+
     def output(self, name: str) -> float:
         """The static value of plant output ``name`` (one of ``OUTPUT_NAMES``)."""
         names = self.layout.output_names

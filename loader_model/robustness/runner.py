@@ -29,6 +29,7 @@ from loader_model.robustness.sensors import (
     sensor_model,
 )
 from loader_model.robustness.study import Study
+from loader_model.simulation.result import command_column
 from loader_model.simulation.settling import COMMAND_AT_LIMIT
 from loader_model.simulation.simulator import course_input, simulate
 
@@ -77,7 +78,7 @@ def _metrics(result: Any, max_displacement: float) -> dict[str, float]:
     evaluation = result.seat_evaluation()
     rms = {axis.axis: float(axis.weighted_rms) for axis in evaluation.axes}
     period = float(result.metadata["period_s"])
-    at_limit = np.abs(result["V_p_ref"]) >= max_displacement * COMMAND_AT_LIMIT
+    at_limit = np.abs(result[command_column(result.columns)]) >= max_displacement * COMMAND_AT_LIMIT
     saturated = period * np.count_nonzero(at_limit)
     return {
         **{f"a_w_{axis}": rms.get(axis, math.nan) for axis in AXES},
@@ -152,7 +153,7 @@ def _run(
     result = simulate(
         road, scenario, duration_s=study.duration_s, sensors=None if name in _HOLDING else sensors
     )
-    return _metrics(result, plant.parameter("V_p_max"))
+    return _metrics(result, plant.command_limit())
 
 
 def run_sample(study: Study, gains: Gains, spec: SampleSpec) -> list[dict[str, Any]]:

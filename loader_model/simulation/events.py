@@ -21,7 +21,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from loader_model.plant.components import ATMOSPHERIC_PRESSURE_PA
-from loader_model.simulation.result import Event
+from loader_model.simulation.result import Event, command_column
 from loader_model.simulation.settling import (
     COMMAND_AT_LIMIT,
     RATE_AT_LIMIT,
@@ -51,6 +51,7 @@ def find_events(
     airborne_min_s: float = DEFAULT_AIRBORNE_MIN_S,
     axles: Sequence[str] = ("A", "B"),
     max_rate: float | None = None,
+    rate_signal: str = "Vd_p",
 ) -> tuple[Event, ...]:
     """All events (module notes) in a run's columns, in order of their start.
 
@@ -60,8 +61,9 @@ def find_events(
         Sample times in s.
     columns : dict of str to numpy.ndarray
         Needs ``p_A``, ``p_B`` [Pa], ``F_<axle>y`` [N] of every axle, ``x_piston`` [m],
-        ``V_p_ref``; ``Vd_p`` for ``max_rate``; :data:`~loader_model.simulation.settling.
-        SETTLE_SIGNAL` and the exogenous inputs for ``persistent_oscillation``.
+        ``V_p_ref`` (a valve circuit's ``x_s_ref``); ``Vd_p`` for ``max_rate``;
+        :data:`~loader_model.simulation.settling.SETTLE_SIGNAL` and the exogenous inputs for
+        ``persistent_oscillation``.
     stroke_m, max_displacement : float
         Cylinder stroke in m and the pump's maximum displacement in m³/rev.
     airborne_min_s : float
@@ -72,6 +74,9 @@ def find_events(
     max_rate : float, optional
         The pump's displacement rate limit in m³/(rev·s): ``pump_rate_limit`` events (none if
         not given).
+    rate_signal : str
+        The column of the actuator's rate: ``Vd_p`` of the pump, ``xd_s`` of a valve's spool
+        (``max_rate`` then in m/s, ``max_displacement`` the spool stroke in m).
     """
     found: list[Event] = []
 
@@ -97,16 +102,17 @@ def find_events(
     piston = columns["x_piston"]
     add("end_stop", "x_piston", piston < 0.0, np.min)
     add("end_stop", "x_piston", piston > stroke_m, np.max)
-    command = columns["V_p_ref"]
+    name = command_column(columns)
+    command = columns[name]
     add(
         "pump_saturation",
-        "V_p_ref",
+        name,
         np.abs(command) >= COMMAND_AT_LIMIT * max_displacement,
         _extreme,
     )
-    if max_rate is not None and "Vd_p" in columns:
-        rate = columns["Vd_p"]
-        add("pump_rate_limit", "Vd_p", np.abs(rate) >= RATE_AT_LIMIT * max_rate, _extreme)
+    if max_rate is not None and rate_signal in columns:
+        rate = columns[rate_signal]
+        add("pump_rate_limit", rate_signal, np.abs(rate) >= RATE_AT_LIMIT * max_rate, _extreme)
     if SETTLE_SIGNAL in columns and time_s.size > 1:
         settle = settle_measure(time_s, columns)
         if settle.persistent:

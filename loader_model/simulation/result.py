@@ -24,12 +24,18 @@ from loader_model.io.export import write_atomically
 
 __all__ = [
     "COLUMN_UNITS",
+    "COMMAND_COLUMNS",
     "RESULT_SUFFIXES",
     "Event",
     "SimulationResult",
     "column_unit",
+    "command_column",
     "seat_signal_names",
 ]
+
+#: The column of the controller's command: the pump's ``V_p_ref`` [m³/rev] or, for a machine with
+#: a valve circuit, the spool command ``x_s_ref`` [m].
+COMMAND_COLUMNS = ("V_p_ref", "x_s_ref")
 
 #: Suffixes :meth:`SimulationResult.write` accepts.
 RESULT_SUFFIXES = (".csv", ".npz")
@@ -52,6 +58,10 @@ COLUMN_UNITS: Mapping[str, str] = MappingProxyType(
         "p_B": "Pa",
         "V_p": "m^3/rev",
         "Vd_p": "m^3/(rev*s)",
+        "x_s": "m",
+        "xd_s": "m/s",
+        "x_s_ref": "m",
+        "Q_supply": "m^3/s",
         "V_acc": "m^3",
         **{name: "m" for name in ("u_Px", "u_Ox", "u_Py", "u_Oy")},
         **{name: "m/s" for name in ("ud_Px", "ud_Ox", "ud_Py", "ud_Oy")},
@@ -97,6 +107,20 @@ _AXLE_UNITS = (  # the columns of any axle <X>: (pattern, unit)
 def _axle_unit(name: str) -> str:
     """Unit of an axle's column not in :data:`COLUMN_UNITS` (a third axle's), else ``"-"``."""
     return next((unit for pattern, unit in _AXLE_UNITS if pattern.fullmatch(name)), "-")
+
+
+def command_column(columns: Mapping[str, object]) -> str:
+    """The name of the command column of a run's ``columns`` (:data:`COMMAND_COLUMNS`).
+
+    Raises
+    ------
+    KeyError
+        If the columns hold no command.
+    """
+    found = [name for name in COMMAND_COLUMNS if name in columns]
+    if not found:
+        raise KeyError(f"no command column; expected one of {', '.join(COMMAND_COLUMNS)}")
+    return found[0]
 
 
 def column_unit(name: str) -> str:

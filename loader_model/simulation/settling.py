@@ -37,6 +37,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from loader_model.simulation.result import command_column
+
 __all__ = [
     "COMMAND_AT_LIMIT",
     "PERSISTENCE_RATIO",
@@ -145,15 +147,17 @@ def limit_duty(columns: Mapping[str, np.ndarray], v_p_max: float, vd_p_max: floa
     Parameters
     ----------
     columns : mapping of str to numpy.ndarray
-        A run's columns; needs ``V_p_ref`` [m³/rev] and ``Vd_p`` [m³/(rev·s)].
+        A run's columns; needs ``V_p_ref`` [m³/rev] and ``Vd_p`` [m³/(rev·s)] (a valve
+        circuit's run: the spool command ``x_s_ref`` [m] and its rate ``xd_s`` [m/s]).
     v_p_max, vd_p_max : float
-        The pump's maximum displacement [m³/rev] and displacement rate [m³/(rev·s)], > 0.
+        The pump's maximum displacement [m³/rev] and displacement rate [m³/(rev·s)], > 0
+        (a valve's spool stroke [m] and rate limit [m/s]).
     """
     for name, value in (("v_p_max", v_p_max), ("vd_p_max", vd_p_max)):
         if not (np.isfinite(value) and value > 0):
             raise ValueError(f"{name} = {value!r}: allowed: a finite number > 0")
-    command = np.abs(np.asarray(columns["V_p_ref"], dtype=float))
-    rate = np.abs(np.asarray(columns["Vd_p"], dtype=float))
+    command = np.abs(np.asarray(columns[command_column(columns)], dtype=float))
+    rate = np.abs(np.asarray(columns["Vd_p" if "Vd_p" in columns else "xd_s"], dtype=float))
     return LimitDuty(
         command=float(np.mean(command >= COMMAND_AT_LIMIT * v_p_max)) if command.size else 0.0,
         rate=float(np.mean(rate >= RATE_AT_LIMIT * vd_p_max)) if rate.size else 0.0,

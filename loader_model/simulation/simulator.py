@@ -324,7 +324,7 @@ def simulate(
     for name, values in zip(output_names, y_all, strict=True):
         if name not in state_names:
             columns_out[name] = values
-    columns_out["V_p_ref"] = u_all
+    columns_out[layout.input_names[0]] = u_all  # V_p_ref, or a valve's spool command x_s_ref
     if sensors is not None:
         for name in SENSOR_NAMES:
             column = output_names.index(name)
@@ -339,10 +339,11 @@ def simulate(
         time_rows,
         columns_out,
         stroke_m=scenario.plant.parameter("stroke"),
-        max_displacement=scenario.plant.parameter("V_p_max"),
+        max_displacement=scenario.plant.command_limit(),
         airborne_min_s=airborne_min_s,
         axles=layout.machine.axles,
-        max_rate=scenario.plant.parameter("Vd_p_max"),
+        max_rate=scenario.plant.rate_limit(),
+        rate_signal=layout.state_names[layout.index("p_A") + 3],
     )
     metadata = {
         "controller": controller.name(),

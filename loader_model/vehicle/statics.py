@@ -160,7 +160,7 @@ def machine_static_equilibrium(
         Every static load of the machine (``F_Ay0``, ``F_By0``, each locked cylinder's preload
         ``F_<name>0``; N, tyre loads positive in compression, a cylinder's positive pushing),
         ``F_act0`` (N), ``x_cyl0`` (m, the driven cylinder's pin-to-pin length) and ``p_A0``
-        (Pa gauge, rod side at the charge pressure).
+        (Pa gauge, rod side at the charge pressure, or a valve circuit's tank pressure).
     """
     info = machine(name)
     values = machine_model_values(params, load)
@@ -175,7 +175,7 @@ def machine_static_equilibrium(
         cyl.count,
         cyl.piston_diameter,
         cyl.rod_diameter,
-        params.hydraulics["charge_pressure"],
+        params.rod_side_pressure,
     )
     names = info.parameter_names
     loads = {n: float(completed[names.index(n)]) for n in info.static_names}

@@ -191,7 +191,7 @@ def _outcome(result: Any, plant: PlantScenario, stopped: str = "") -> RunOutcome
     from loader_model.simulation.settling import limit_duty, settle_measure
 
     evaluation = result.seat_evaluation()
-    duty = limit_duty(result.columns, plant.parameter("V_p_max"), plant.parameter("Vd_p_max"))
+    duty = limit_duty(result.columns, plant.command_limit(), plant.rate_limit())
     settle = settle_measure(result.time_s, result.columns)
     return RunOutcome(
         a_total=float(evaluation.total_m_s2),

@@ -1,0 +1,113 @@
+"""A machine with the valve-controlled lift circuit through the runtime: the example of
+docs/examples/valve_wheel_loader/ (the compact wheel loader's mechanics, ``[circuit] kind =
+"valve"``), derived into the session's temporary cache, rests at its static equilibrium with the
+load-holding valve open and closed, and runs the paper's course at 9 km/h with the baseline and
+the skyhook controller (the spool driven through the pressure loop) to finite results; a bad
+``[valve]`` value is refused by the command in one line with exit code 2.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from loader_model.cli import main
+
+#: Deriving with SymPy about 8-12 s, each simulated course about 3 s (2-core machine).
+pytestmark = pytest.mark.slow
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "docs" / "examples" / "valve_wheel_loader"
+DESCRIPTION = EXAMPLE / "valve_wheel_loader.toml"
+VALUES = EXAMPLE / "valve_wheel_loader_values.toml"
+
+
+@pytest.fixture(scope="module")
+def machine_args() -> list[str]:
+    """``--machine``/``--params`` of the example, derived into the session's temporary cache."""
+    from derive.__main__ import main as derive_main
+    from loader_model.machines import generated_folder
+
+    assert derive_main([str(DESCRIPTION)]) == 0
+    assert (generated_folder(DESCRIPTION) / "__init__.py").is_file()
+    return ["--machine", str(DESCRIPTION), "--params", str(VALUES)]
+
+
+@pytest.mark.parametrize("controller", ["baseline", "skyhook"])
+def test_the_valve_machine_rests_at_its_equilibrium(
+    machine_args: list[str], controller: str
+) -> None:
+    """Open load-holding valve (skyhook): the hold spool feeds the spool's leakage, every rate
+    zero; closed (baseline): the seal leakage's quasi-static drift only (a few hundred Pa/s)."""
+    from loader_model.plant.plant import plant_function
+    from loader_model.plant.plant_parameters import PlantOptions
+    from loader_model.plant.scenario import resolve_plant
+
+    plant = resolve_plant(
+        VALUES, "full", PlantOptions.for_controller(controller), machine=str(DESCRIPTION)
+    )
+    assert plant.layout.circuit == "valve" and plant.layout.input_names == ("x_s_ref",)
+    names = plant.layout.state_names
+    f = plant_function(str(DESCRIPTION))
+    rate = np.asarray(f(plant.x0, plant.u0, np.zeros(f.size1_in(2)), plant.params)[0]).ravel()
+    assert plant.x0[names.index("p_B")] == plant.parameter("p_tank")
+    mechanical = rate[: names.index("p_A")]
+    assert np.max(np.abs(mechanical)) < 1e-9
+    pressures = np.abs(rate[names.index("p_A") : names.index("p_A") + 2])
+    if controller == "skyhook":
+        assert 0 < plant.u0 < 0.01 * plant.command_limit()  # a few um of the 5 mm stroke
+        assert np.max(pressures) < 1e-6 * plant.x0[names.index("p_A")]
+    else:
+        assert plant.u0 == 0.0
+        assert np.max(pressures) < 1e3  # Pa/s: the seals' drift
+
+
+@pytest.mark.parametrize("controller", ["baseline", "skyhook"])
+def test_the_valve_machine_runs_the_paper_course(
+    machine_args: list[str], controller: str, tmp_path: Path
+) -> None:
+    output = tmp_path / f"{controller}.npz"
+    argv = ["simulate", *machine_args, "--load", "full", "--controller", controller]
+    assert main([*argv, "--speed", "9", "--output", str(output)]) == 0
+    with np.load(output) as data:
+        columns = {name: data[name] for name in data.files if data[name].dtype.kind == "f"}
+    assert {"x_s", "xd_s", "x_s_ref", "Q_supply", "p_A", "f_Sy"} <= set(columns)
+    assert "V_p_ref" not in columns and "V_p" not in columns
+    for name, values in columns.items():
+        assert np.all(np.isfinite(values)), name
+    assert columns["time"][-1] > 10.0  # the whole course, not a run stopped by validity
+    spool = columns["x_s"]
+    if controller == "baseline":  # the spool stays centred, the cylinder sealed
+        assert np.max(np.abs(spool)) == 0.0
+    else:  # the pressure loop moves the spool, within its stroke
+        assert 1e-5 < np.max(np.abs(spool)) <= 0.005 * 1.01
+
+
+def test_a_bad_valve_value_exits_with_one_line(
+    machine_args: list[str], tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    bad = tmp_path / "values.toml"
+    text = VALUES.read_text(encoding="utf-8")
+    bad.write_text(text.replace("damping_ratio = { value = 0.7,", "damping_ratio = { value = 9.0,"))
+    argv = ["simulate", "--machine", str(DESCRIPTION), "--params", str(bad), "--duration", "1"]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err, err
+    assert "[valve]: damping_ratio = 9.0 - is out of range; allowed: [0.05, 5]" in err, err
+
+
+def test_the_fmu_export_refuses_a_valve_circuit_in_one_line(
+    machine_args: list[str], tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from loader_model.fmu.build import find_compiler
+
+    try:
+        find_compiler()
+    except ValueError:
+        pytest.skip("no C compiler: export-fmu stops before reading the machine")
+    assert main(["export-fmu", *machine_args, str(tmp_path / "valve.fmu")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "Traceback" not in err, err
+    assert "[circuit] kind = 'valve'; the FMU export supports kind 'pump' only" in err, err
+    assert not (tmp_path / "valve.fmu").exists()
