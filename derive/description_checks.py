@@ -144,10 +144,25 @@ class _Checker:
             self.fail(entry, value, "give [low, high] with low < high")
 
 
+def _check_mounts(check: _Checker, entry: str, body: dict[str, Any]) -> None:
+    """The keys of sliding and two-point mounts: ``end_stops`` and ``mounts``."""
+    if "end_stops" in body and not isinstance(body["end_stops"], bool):
+        check.fail(f"{entry}.end_stops", body["end_stops"], "give true or false")
+    if "mounts" in body:
+        value = body["mounts"]
+        if not isinstance(value, list) or len(value) != 2:
+            check.fail(f"{entry}.mounts", value, 'give the 2 mount points ["front", "rear"]')
+        for index, item in enumerate(value):
+            check.name(f"{entry}.mounts[{index}]", item)
+        if value[0] == value[1]:
+            check.fail(f"{entry}.mounts", value, "give two different points")
+
+
 def _check_body(check: _Checker, name: str, raw: Any, names: dict[str, str]) -> None:
     entry = f"bodies.{name}"
     check.body_keys(entry, raw)
     body = check.table(entry, raw)
+    mounted = body.get("joint") == "two_mounts"
     for key in ("parent", "at", "reference", "mass", "inertia", "centre_of_gravity"):
         if key in body:
             check.name(f"{entry}.{key}", body[key])
@@ -163,10 +178,12 @@ def _check_body(check: _Checker, name: str, raw: Any, names: dict[str, str]) -> 
     coordinates: list[tuple[str, Any]] = []
     if "coordinates" in body:
         value = body["coordinates"]
-        if not isinstance(value, list) or len(value) != 3:
-            check.fail(f"{entry}.coordinates", value, 'give a list of 3 names ["x", "y", "angle"]')
+        count, shape = (2, '["bounce", "pitch"]') if mounted else (3, '["x", "y", "angle"]')
+        if not isinstance(value, list) or len(value) != count:
+            check.fail(f"{entry}.coordinates", value, f"give a list of {count} names {shape}")
         coordinates += [(f"{entry}.coordinates[{i}]", item) for i, item in enumerate(value)]
-    for key in ("coordinate", "joint_angle", "mass", "inertia"):
+    _check_mounts(check, entry, body)
+    for key in ("coordinate", "joint_angle", "mass", "inertia", "extension"):
         if key in body:
             coordinates.append((f"{entry}.{key}", body[key]))
     for where, value in coordinates:

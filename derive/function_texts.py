@@ -105,7 +105,13 @@ def model_specs(mech: LoaderMechanics, nm: Naming, io: dict[str, InputSpec]) -> 
                 "Forces of the internal spring-dampers K_e(p), D_e(p, ṗ), left-hand side.",
                 f"Elements {', '.join(machine.elements)} (derive/elements.py): hydraulically locked\n"
                 "cylinders as springs of their chamber stiffness, sliding mounts as spring-dampers,\n"
-                "with the preloads of the static equilibrium.",
+                "with the preloads of the static equilibrium."
+                + (
+                    f"\nEnd stops (C¹ one-sided spring-dampers beyond the travel limits) on "
+                    f"{', '.join(machine.stops)}."
+                    if machine.stops
+                    else ""
+                ),
                 (io["p"], io["pd"], io["params"]),
                 (
                     OutputSpec("K_e", mech.elements.springs, forces),
@@ -176,7 +182,9 @@ def _positions_texts(nm: Naming) -> tuple[str, str]:
         groups.append(f"the {body.label} points {', '.join(names)}")
     joints = []
     for body in machine.bodies[1:]:
-        kind = "pin constraint" if body.joint == "pin" else "sliding mount"
+        kind = {"pin": "pin constraint", "two_mounts": "two-point mount"}.get(
+            body.joint, "sliding mount"
+        )
         joints.append(f"{body.label.capitalize()} points follow the {kind} at {body.at}")
     return (
         f"World positions of {listing(groups)}.",
