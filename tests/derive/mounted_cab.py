@@ -103,7 +103,14 @@ reference = "H"
 coordinates = ["x_H", "y_H", "theta_1"]
 mass = "m_1"
 inertia = "J_1"
-points = {{ A = "front axle", B = "rear axle", C = "lift-cylinder base", D = "boom pivot", M = "cab reference", N = "second accelerometer" }}
+
+[bodies.chassis.points]
+A = "front axle"
+B = "rear axle"
+C = "lift-cylinder base"
+D = "boom pivot"
+M = "cab reference"
+N = "second accelerometer"
 
 [bodies.boom]
 joint = "pin"
