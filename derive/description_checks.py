@@ -4,9 +4,11 @@
 too large, nested too deeply, a duplicate key) and :func:`check_entries` every entry of the wrong
 type or value: names that are not Python identifiers (a body, point, coordinate, parameter or the
 machine itself), numbers that are not finite, ranges that are reversed, ``coordinates`` given as a
-string, a coordinate or parameter name used twice, a sensor axis other than ``x`` and ``y``. A key
-that a table does not take (a misspelt one) is named before anything is read from the table, with
-the closest allowed key, the keys still missing and the keys allowed
+string, a coordinate or parameter name used twice, a sensor axis other than ``x`` and ``y``, a
+joint that does not exist, a two-point mount without exactly two different mount points,
+``end_stops`` other than true or false. A key that a table does not take (a misspelt one) is
+named before anything is read from the table, with the closest allowed key, the keys still
+missing and the keys allowed
 (:mod:`derive.description_keys`). Each raises :class:`~derive.description.DescriptionError`
 naming the entry, the value and what is allowed, so that nothing is derived from a description
 that cannot be built. Standard library only.
@@ -162,6 +164,8 @@ def _check_body(check: _Checker, name: str, raw: Any, names: dict[str, str]) -> 
     entry = f"bodies.{name}"
     check.body_keys(entry, raw)
     body = check.table(entry, raw)
+    if "joint" in body and body["joint"] not in JOINTS:
+        check.fail(f"{entry}.joint", body["joint"], f"allowed: {', '.join(JOINTS)}")
     mounted = body.get("joint") == "two_mounts"
     for key in ("parent", "at", "reference", "mass", "inertia", "centre_of_gravity"):
         if key in body:
