@@ -43,9 +43,10 @@ def model_specs(mech: LoaderMechanics, nm: Naming, io: dict[str, InputSpec]) -> 
     joint_name, joint = nm.joint_angle(child.name)
     pattern = [0] * n
     pattern[sym.index(child.coordinates[0])] = 1
-    pattern[
-        sym.index(nm.sym.coordinates[2].name if parent.joint == "free" else parent.coordinates[0])
-    ] = -1
+    carrier = parent  # the body whose angle the parent shares (a slider's is its parent's)
+    while carrier.angle is None:
+        carrier = machine.body(carrier.parent)  # type: ignore[arg-type]
+    pattern[sym.index(carrier.angle)] = -1
     vector = "(" + ", ".join({0: "0", 1: "1", -1: "−1"}[v] for v in pattern) + ")"
     forces = f"({n},) generalised forces {nm.forces}"
     both = "both tyres" if len(machine.axles) == 2 else "every tyre"

@@ -283,3 +283,33 @@ def test_undamped_motion_with_the_stops_hit_conserves_energy(gen: ModuleType) ->
     # measured 2.7e-11 (DOP853, rtol 1e-12); the stops are C¹ only, which costs the integrator
     # order at their edges: a wide margin
     assert drift < 1e-7
+
+
+def test_linearisation_through_an_engaged_stop_matches_finite_differences(gen: ModuleType) -> None:
+    """A and B of the generated linearisation against central differences of the forward
+    dynamics at a state with the seat 3 mm into its upper stop and moving into it (the stop's
+    spring and damper on their linear parts): CasADi's derivatives go through the stops."""
+    from tests.numerics import central_difference
+
+    params = _params(gen)
+    named = dict(zip(gen.PARAMETER_NAMES, params, strict=True))
+    f_act0 = float(gen.function("complete_parameters")(params)[1])
+    dynamics = gen.function("forward_dynamics")
+    zeros3 = np.zeros(3)
+
+    def rate(x: np.ndarray, force: float = f_act0) -> np.ndarray:
+        pdd, _ = dynamics(x[:N], x[N:], np.zeros(2), force, ZEROS4, ZEROS4, zeros3, params)
+        return np.concatenate([x[N:], np.asarray(pdd).ravel()])
+
+    x0 = 1e-3 * np.array([1, -2, 2, -3, 0.01, 4, 3, 0, 10, -20, 8, 15, 0.1, 20, 30, 100.0])
+    x0[_index("s_seat")] = named["s_max_seat"] + 6 * BAND_M
+    out = gen.function("linearisation")(x0[:N], x0[N:], f_act0, ZEROS4, ZEROS4, zeros3, params)
+    a_mat = np.asarray(out[0])
+    index = [gen.STATE_NAMES.index(n) for n in (*gen.COORDINATE_NAMES, *gen.RATE_NAMES)]
+    reference = central_difference(rate, x0, np.full(2 * N, 1e-7))
+    seat = N + _index("s_seat")
+    # the seat's acceleration per metre of its travel: spring and stop, k + k_stop over its mass
+    stiff = (named["k_seat"] + named["k_stop_seat"]) / VALUES["m_seat"]
+    assert -reference[seat, _index("s_seat")] > 0.9 * stiff  # the stop is in the derivative
+    scale = np.abs(reference).max()
+    np.testing.assert_allclose(a_mat[np.ix_(index, index)], reference, rtol=1e-5, atol=1e-6 * scale)
