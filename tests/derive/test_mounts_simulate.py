@@ -156,3 +156,15 @@ def test_board_course_runs_with_finite_results(machine_args: list[str], capsys) 
     a_total = float(found.group(1))
     assert math.isfinite(a_total) and 0.05 < a_total < 20.0
     assert "nan" not in out.lower()
+
+
+def test_modes_and_fmu_of_the_mounted_cab(machine_args: list[str], tmp_path: Path, capsys) -> None:
+    """The linear modes list the cab's bounce and pitch and the seat's travel, and the plant
+    exports as an FMU (the two-point mount's coordinates in the runtime's machine structure)."""
+    assert main(["modes", *machine_args, "--load", "full"]) == 0
+    out = capsys.readouterr().out
+    for row in ("s_cab [m]", "theta_cab [rad]", "s_seat [m]"):
+        assert row in out
+    fmu = tmp_path / "tractor_mounts.fmu"
+    assert main(["export-fmu", *machine_args, str(fmu)]) == 0
+    assert fmu.stat().st_size > 10_000
