@@ -168,3 +168,22 @@ def test_modes_and_fmu_of_the_mounted_cab(machine_args: list[str], tmp_path: Pat
     fmu = tmp_path / "tractor_mounts.fmu"
     assert main(["export-fmu", *machine_args, str(fmu)]) == 0
     assert fmu.stat().st_size > 10_000
+
+
+def test_travel_limits_that_miss_the_static_position_are_refused(
+    machine_args: list[str], tmp_path: Path, capsys
+) -> None:
+    """A values file whose seat stops do not hold p = 0: one line naming both limits, exit 2."""
+    values = Path(machine_args[3]).read_text(encoding="utf-8")
+    old = "s_min_seat = { value = -0.045,"
+    assert old in values
+    bad = tmp_path / "bad_values.toml"
+    bad.write_text(values.replace(old, "s_min_seat = { value = 0.01,"), encoding="utf-8")
+    assert main(["modes", "--machine", machine_args[1], "--params", str(bad)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1
+    assert err.endswith(
+        "bad_values.toml [model]: s_min_seat = 0.01 m and s_max_seat = 0.045 m: the end stops' "
+        "travel limits must hold the static position inside (s_min < 0 < s_max, travel from "
+        "p = 0)"
+    )
