@@ -4,7 +4,10 @@ A description names the bodies (one chassis free in the plane, others on a pin t
 a named point of it, or on a sliding mount with a spring-damper), the named points of each body,
 the axles with tyres, the actuators (the driven lift cylinder group and hydraulically locked
 cylinders), the sensor points and every parameter with its unit, description, range and source
-(the static loads computed at rest may be left out: :func:`static_load_parameters` lists them).
+(the static loads computed at rest may be left out: :func:`static_load_parameters` lists them),
+and in ``[tyres]`` each axle's tyre road geometry (:mod:`derive.description_tyres`: free radius
+and tandem cam), declared the same way: parameters of the road input, not of the generated
+functions.
 The format is drawn in ``derive/machine.schema.json``; :func:`load_machine` checks it and raises a
 :class:`DescriptionError` naming the offending entry.
 
@@ -20,6 +23,7 @@ from typing import Any
 
 from derive.description_checks import DescriptionError, check_entries, read_description
 from derive.description_keys import JOINTS, KEYS, parameter_names_problem
+from derive.description_tyres import check_tyres, tyre_parameters
 
 __all__ = [
     "MACHINES_DIR",
@@ -34,6 +38,7 @@ __all__ = [
     "mount_parameters",
     "static_load_parameters",
     "structural_parameters",
+    "tyre_parameters",
 ]
 
 MACHINES_DIR = Path(__file__).resolve().parent / "machines"
@@ -108,6 +113,7 @@ class Machine:
     sensors: dict[str, tuple[str, tuple[str, ...]]]
     parameters: tuple[ParameterInfo, ...]
     point_range: tuple[float, float]
+    tyres: tuple[ParameterInfo, ...] = ()
 
     @property
     def root(self) -> Body:
@@ -431,7 +437,8 @@ def load_machine(source: str | Path) -> Machine:
     )
     _check_references(where, machine)
     parameters = _parameters(where, _need(where, "(top level)", raw, "parameters"), machine)
-    return Machine(**{**machine.__dict__, "parameters": parameters})
+    tyres = tuple(ParameterInfo(*item) for item in check_tyres(where, raw, machine.axles))
+    return Machine(**{**machine.__dict__, "parameters": parameters, "tyres": tyres})
 
 
 def available_machines() -> tuple[str, ...]:

@@ -5,10 +5,10 @@ too large, nested too deeply, a duplicate key) and :func:`check_entries` every e
 type or value: names that are not Python identifiers (a body, point, coordinate, parameter or the
 machine itself), numbers that are not finite, ranges that are reversed, ``coordinates`` given as a
 string, a coordinate or parameter name used twice, a sensor axis other than ``x`` and ``y``, a
-joint that does not exist, a two-point mount without exactly two different mount points,
-``end_stops`` other than true or false. A key that a table does not take (a misspelt one) is
-named before anything is read from the table, with the closest allowed key, the keys still
-missing and the keys allowed
+``[tyres]`` entry without its unit, description, range or source, a joint that does not exist, a
+two-point mount without exactly two different mount points, ``end_stops`` other than true or
+false. A key that a table does not take (a misspelt one) is named before anything is read from
+the table, with the closest allowed key, the keys still missing and the keys allowed
 (:mod:`derive.description_keys`). Each raises :class:`~derive.description.DescriptionError`
 naming the entry, the value and what is allowed, so that nothing is derived from a description
 that cannot be built. Standard library only.
@@ -251,11 +251,14 @@ def check_entries(where: str, raw: dict[str, Any]) -> None:
             check.fail(f"sensors.{point}.axes", axes, 'give one or both of "x", "y", once each')
         if "label" in item:
             check.text(f"sensors.{point}.label", item["label"])
-    for name, item in check.table("parameters", raw.get("parameters", {})).items():
-        check.keys(f"parameters.{name}", item, "parameter")
-        item = check.table(f"parameters.{name}", item)
-        for key in ("unit", "description", "source"):
-            if key in item:
-                check.text(f"parameters.{name}.{key}", item[key])
-        if "range" in item:
-            check.range(f"parameters.{name}.range", item["range"])
+    for table, kind in (("parameters", "parameter"), ("tyres", "tyre")):
+        for name, item in check.table(table, raw.get(table, {})).items():
+            check.keys(f"{table}.{name}", item, kind)
+            item = check.table(f"{table}.{name}", item)
+            for key in sorted(REQUIRED[kind] - item.keys()) if kind == "tyre" else ():
+                raise DescriptionError(where, f"{table}.{name}.{key}", "missing")
+            for key in ("unit", "description", "source"):
+                if key in item:
+                    check.text(f"{table}.{name}.{key}", item[key])
+            if "range" in item:
+                check.range(f"{table}.{name}.range", item["range"])

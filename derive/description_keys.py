@@ -27,7 +27,7 @@ JOINTS = ("free", "pin", "slider", "two_mounts")
 #: The keys each table of a description takes: the top level, [machine], a body by its joint,
 #: an axle, an actuator, a sensor and a parameter.
 KEYS: dict[str, frozenset[str]] = {
-    "": frozenset({"machine", "bodies", "axles", "actuators", "sensors", "parameters"}),
+    "": frozenset({"machine", "bodies", "axles", "actuators", "sensors", "parameters", "tyres"}),
     "machine": frozenset({"name", "title", "point_range"}),
     "free": frozenset({"joint", "label", "reference", "coordinates", "mass", "inertia", "points"}),
     "pin": frozenset(
@@ -47,10 +47,11 @@ KEYS: dict[str, frozenset[str]] = {
     "actuator": frozenset({"kind", "base", "rod"}),
     "sensor": frozenset({"axes", "label"}),
     "parameter": frozenset({"unit", "description", "range", "source"}),
+    "tyre": frozenset({"unit", "description", "range", "source"}),
 }
 #: The keys of :data:`KEYS` that each table must have (as derive/machine.schema.json).
 REQUIRED: dict[str, frozenset[str]] = {
-    "": frozenset({"machine", "bodies", "axles", "actuators", "parameters"}),
+    "": frozenset({"machine", "bodies", "axles", "actuators", "parameters", "tyres"}),
     "machine": frozenset({"name", "title"}),
     "free": frozenset({"joint", "reference", "coordinates", "mass", "inertia", "points"}),
     "pin": frozenset(
@@ -68,6 +69,7 @@ REQUIRED: dict[str, frozenset[str]] = {
     "actuator": frozenset({"kind", "base", "rod"}),
     "sensor": frozenset({"axes"}),
     "parameter": frozenset({"unit", "description"}),
+    "tyre": frozenset({"unit", "description", "range", "source"}),
 }
 
 

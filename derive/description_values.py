@@ -1,6 +1,6 @@
 """A machine's parameter values (a flat ``{name: {value, unit, source}}`` set) checked against
-its description (:mod:`derive.description`): every parameter given once, with its unit, a
-finite value inside its range and a source."""
+its description (:mod:`derive.description`): every parameter and every tyre entry of its
+``[tyres]`` given once, with its unit, a finite value inside its range and a source."""
 
 from __future__ import annotations
 
@@ -27,7 +27,7 @@ def check_values(machine: Machine, values: dict[str, dict[str, Any]]) -> None:
         limits do not hold the static position (s_min < 0 < s_max).
     """
     where = f"values for {machine.name}"
-    known = {item.name: item for item in machine.parameters}
+    known = {item.name: item for item in (*machine.parameters, *machine.tyres)}
     loads = static_load_parameters(machine)
     for name in values:
         if name not in known:

@@ -32,6 +32,7 @@ Examples
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import importlib
 import importlib.util
@@ -131,6 +132,11 @@ class MachineInfo:
     cylinders and sliding mounts)."""
     description_path: Path
     description_hash: str
+    tyre_units: dict[str, str] = dataclasses.field(default_factory=dict)
+    """Unit of each tyre road-geometry parameter of the description's ``[tyres]`` (``R_A``,
+    ``ae_A``, ...; :mod:`loader_model.parameters.tyres`), not inputs of the generated functions."""
+    tyre_ranges: dict[str, tuple[float, float]] = dataclasses.field(default_factory=dict)
+    """Allowed [low, high] of each of them (the description's ranges)."""
 
     def coordinate_unit(self, name: str) -> str:
         """The unit of coordinate ``name``: m for a length (:attr:`length_coordinates`), else rad."""
@@ -276,6 +282,7 @@ def _structure(raw: dict[str, Any]) -> dict[str, Any]:
         for name, item in raw.get("actuators", {}).items()
     )
     axles = tuple(item["point"] for item in raw["axles"])
+    tyres = raw.get("tyres", {})
     # the internal spring-dampers' preloads, as derive names them: locked cylinders, then the
     # mounts in body order (a slider F_<body>0, a two-point mount F_<body>_<point>0 per mount)
     locked = [f"F_{item.name}0" for item in cylinders if item.kind == "locked"]
@@ -304,6 +311,8 @@ def _structure(raw: dict[str, Any]) -> dict[str, Any]:
         "parameter_ranges": ranges,
         "static_names": (*(f"F_{axle}y0" for axle in axles), *locked),
         "point_names": tuple(sorted(points)),
+        "tyre_units": {name: item["unit"] for name, item in tyres.items()},
+        "tyre_ranges": {name: tuple(item["range"]) for name, item in tyres.items()},
     }
 
 

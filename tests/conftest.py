@@ -10,14 +10,25 @@ import pytest
 
 @pytest.fixture(scope="session", autouse=True)
 def machine_cache(tmp_path_factory: pytest.TempPathFactory) -> Iterator[None]:
-    """The runtime's machine cache ($XDG_CACHE_HOME) in a temporary folder, not the user's."""
-    before = os.environ.get("XDG_CACHE_HOME")
+    """The runtime's machine cache ($XDG_CACHE_HOME) in a temporary folder, not the user's.
+
+    The compiled periods' cache (``loader_model.simulation.compiled``, which also follows
+    $XDG_CACHE_HOME) stays where it was: the workers share the periods that
+    :func:`pytest_configure` compiled before they started, and a later run reuses them.
+    """
+    from loader_model.simulation.compiled import cache_directory
+
+    names = ("XDG_CACHE_HOME", "LOADER_MODEL_CACHE_DIR")
+    before = {name: os.environ.get(name) for name in names}
+    compiled = cache_directory()
+    os.environ["LOADER_MODEL_CACHE_DIR"] = "off" if compiled is None else str(compiled)
     os.environ["XDG_CACHE_HOME"] = str(tmp_path_factory.mktemp("cache"))
     yield
-    if before is None:
-        del os.environ["XDG_CACHE_HOME"]
-    else:
-        os.environ["XDG_CACHE_HOME"] = before
+    for name, value in before.items():
+        if value is None:
+            os.environ.pop(name, None)
+        else:
+            os.environ[name] = value
 
 
 #: A plausible 3.5 t skid-steer whose points follow the layout the paper's signs assume:

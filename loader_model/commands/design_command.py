@@ -10,6 +10,11 @@ from loader_model.commands.common import (
     add_machine_argument,
     add_progress_argument,
 )
+from loader_model.commands.course_options import (
+    add_course_arguments,
+    course_from_arguments,
+    course_options_given,
+)
 from loader_model.commands.design_steps import (
     check_step,
     designed_settings,
@@ -47,7 +52,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "plant; machine: optimise, then minimise a_total relative to the baseline on "
         "the nonlinear machine over both loads, boards at 9 and 18 km/h and an ISO 8608 class C "
         "road at 15 km/h, with exact gradients and the design check's criteria as constraints; "
-        "refine: optimise, then a derivative-free (Nelder-Mead) refinement on the paper course "
+        "refine: optimise, then a derivative-free (Nelder-Mead) refinement on --course "
         "at --speed",
     )
     parser.add_argument(
@@ -80,6 +85,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument("--road", default="C", metavar="CLASS", help="ISO 8608 road class, A-H")
     parser.add_argument("--speed", type=float, default=9.0, metavar="KMH", help="speed in km/h")
+    add_course_arguments(parser, "; the course --method refine drives at --speed")
     parser.add_argument(
         "--margin", type=float, default=0.1, metavar="RAD_S", help="stability margin σ in rad/s"
     )
@@ -150,8 +156,12 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
         raise ValueError(f"--speed {args.speed!r}: allowed: 0.36 to 108 km/h")
     if not (np.isfinite(args.margin) and args.margin >= 0):
         raise ValueError(f"--margin {args.margin!r}: allowed: a number >= 0 (rad/s)")
-    if args.method == "refine" and args.speed not in (9.0, 18.0):
-        raise ValueError(f"--speed {args.speed:g} with --method refine: allowed: 9 or 18 km/h")
+    given = course_options_given(args)
+    if given and args.method != "refine":
+        raise ValueError(
+            f"{', '.join(given)} with --method {args.method}: allowed only with --method refine"
+        )
+    course = course_from_arguments(args) if args.method == "refine" else None
     if args.evaluations < 1:
         raise ValueError(f"--evaluations {args.evaluations}: allowed: an integer >= 1")
     if args.start is not None and args.method != "machine":
@@ -222,7 +232,7 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
         print(_row(name, gain, evaluate_gain(every, gain)))
     print(f"  {label}: {note}")
     if args.method == "refine":
-        designed, course_note = refine_step(args, designed, loads, params, machine)
+        designed, course_note = refine_step(args, designed, loads, params, machine, course)
         label = "refined on the course"
     check = None
     if args.method == "machine":

@@ -15,14 +15,16 @@ __all__ = ["CHECK_ROUNDS", "check_step", "designed_settings", "machine_step", "r
 CHECK_ROUNDS = 3
 
 
-def refine_step(args: argparse.Namespace, start, loads, params, machine: str):
-    """Refine ``start`` on the nonlinear paper course and print the course a_total before/after."""
+def refine_step(args: argparse.Namespace, start, loads, params, machine: str, course):
+    """Refine ``start`` on the nonlinear ``course`` and print the course a_total before/after."""
     from loader_model.experiments.course_refinement import course_cost, refine_on_course
 
-    print(f"Refining on the nonlinear paper course at {args.speed:g} km/h ({', '.join(loads)}):")
+    print(f"Refining on the nonlinear course: {course.name} ({', '.join(loads)}):")
     from loader_model.control.comfort_design import TABLE3_GAIN
 
-    table3 = course_cost(tuple(TABLE3_GAIN.ravel()), loads, args.speed, params, machine=machine)
+    table3 = course_cost(
+        tuple(TABLE3_GAIN.ravel()), loads, args.speed, params, machine=machine, course=course
+    )
     result = refine_on_course(
         start,
         loads=loads,
@@ -32,6 +34,7 @@ def refine_step(args: argparse.Namespace, start, loads, params, machine: str):
         max_evaluations=args.evaluations,
         machine=machine,
         progress=not args.no_progress,
+        course=course,
     )
     for name, totals in (
         ("Table 3", table3),

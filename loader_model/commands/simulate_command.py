@@ -28,9 +28,13 @@ from loader_model.commands.common import (
     add_model_arguments,
     machine_from_arguments,
 )
+from loader_model.commands.course_options import (
+    add_course_arguments,
+    check_drive,
+    course_from_arguments,
+)
 
 if TYPE_CHECKING:
-    from loader_model.simulation.courses import Course
     from loader_model.simulation.result import Event
     from loader_model.simulation.validity_check import ModelValidityError
 
@@ -56,45 +60,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "with its settings, e.g. written by loader-model design --output)",
     )
     parser.add_argument("--speed", type=float, default=9.0, metavar="KMH", help="speed in km/h")
-    parser.add_argument(
-        "--course",
-        default="paper",
-        metavar="COURSE",
-        help="'paper' (the paper's five 4 cm boards, 6 m apart at 9 km/h or 9 m apart at "
-        "18 km/h), 'boards' (boards at any --speed, shaped by the --board-* options), 'single' "
-        "(one board), 'iso8608:CLASS' (random road, class A-H) or a course file FILE.toml "
-        "(your own list of obstacles; see the user guide's simulation page)",
-    )
-    boards = parser.add_argument_group("the board course (--course boards)")
-    boards.add_argument(
-        "--boards",
-        type=int,
-        default=None,
-        metavar="N",
-        help="number of boards, 1-1000 (default: 5, the paper's)",
-    )
-    boards.add_argument(
-        "--board-spacing",
-        type=float,
-        default=None,
-        metavar="M",
-        help="leading edge to leading edge in m, above the board length and at most 1000 "
-        "(default: the paper's rule, 3 m + speed / (3 km/h) m: 6 m at 9 km/h, 9 m at 18 km/h)",
-    )
-    boards.add_argument(
-        "--board-height",
-        type=float,
-        default=None,
-        metavar="M",
-        help="board height in m, (0, 0.5] (default: 0.04, the paper's)",
-    )
-    boards.add_argument(
-        "--board-length",
-        type=float,
-        default=None,
-        metavar="M",
-        help="board length along the path in m, (0, 5] (default: 0.14, a 2x6 plank laid flat)",
-    )
+    add_course_arguments(parser)
     parser.add_argument(
         "--duration",
         type=float,
@@ -108,7 +74,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         choices=("tandem-cam", "rigid"),
         default="tandem-cam",
         help="how the tyres envelop the road: tandem elliptical cams per axle from the static "
-        "tyre deflection or rigid discs of radius 0.42 m",
+        "tyre deflection or rigid discs of each axle's free tyre radius (the parameter set's "
+        "tyres: 0.42 m on the shipped machines)",
     )
     parser.add_argument(
         "--substeps",
@@ -136,79 +103,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         default=None,
         help="seat-acceleration figure (default: beside --output, with suffix .png)",
     )
-
-
-#: The ``--board-*`` options: attribute, option, keyword of :func:`board_course_at`.
-_BOARD_OPTIONS = (
-    ("boards", "--boards", "count"),
-    ("board_spacing", "--board-spacing", "spacing_m"),
-    ("board_height", "--board-height", "height_m"),
-    ("board_length", "--board-length", "length_m"),
-)
-
-
-def _course(args: argparse.Namespace):
-    """The course ``--course`` names, at ``--speed``, shaped by the ``--board-*`` options."""
-    from loader_model.simulation.courses import (
-        PAPER_SPACING_M,
-        board_course_at,
-        iso8608_course,
-        paper_course,
-        single_obstacle_course,
-    )
-
-    text, speed_kmh = args.course, args.speed
-    board = {
-        keyword: (option, getattr(args, name))
-        for name, option, keyword in _BOARD_OPTIONS
-        if getattr(args, name, None) is not None
-    }
-    if board and text != "boards":
-        options = ", ".join(option for option, _ in board.values())
-        raise ValueError(f"{options}: allowed only with --course boards; got --course {text}")
-    if text == "boards":
-        try:
-            return board_course_at(speed_kmh, **{k: v for k, (_, v) in board.items()})
-        except ValueError as error:  # name the option, not the library's argument
-            for keyword, (option, _) in board.items():
-                if str(error).startswith(keyword):
-                    raise ValueError(option + str(error)[len(keyword) :]) from None
-            raise
-    if text == "paper":
-        if speed_kmh not in PAPER_SPACING_M:
-            raise ValueError(
-                f"--speed {speed_kmh:g}: allowed with --course paper: "
-                f"{' or '.join(f'{v:g}' for v in PAPER_SPACING_M)} km/h (the paper's courses; "
-                "--course boards drives them at any speed)"
-            )
-        return paper_course(speed_kmh)
-    if text == "single":
-        return single_obstacle_course(speed_kmh)
-    if text.endswith(".toml"):
-        from loader_model.simulation.obstacles import load_course_file
-
-        return load_course_file(text, speed_kmh)
-    from loader_model.simulation.iso8608 import CLASS_PSD_M3
-
-    name, _, road_class = text.partition(":")
-    if name != "iso8608" or road_class.strip().upper() not in CLASS_PSD_M3:
-        classes = f"iso8608:{min(CLASS_PSD_M3)} to iso8608:{max(CLASS_PSD_M3)}"
-        raise ValueError(
-            f"--course must be paper, boards, single, {classes} or a course file FILE.toml; "
-            f"got {text!r}"
-        )
-    length_m = 200.0 if args.duration is None else speed_kmh / 3.6 * args.duration + 20.0
-    return iso8608_course(road_class.strip().upper(), speed_kmh, length_m=length_m, seed=args.seed)
-
-
-def _check_drive(course: Course, speed_kmh: float) -> None:
-    """Refuse a course that takes more than an hour at ``--speed`` (without ``--duration``)."""
-    drive_s = course.duration_s(0.0)  # at least this long, whatever the machine's wheelbase
-    if drive_s > 3600.0:
-        raise ValueError(
-            f"--speed {speed_kmh:g} km/h: the course takes {drive_s:.3g} s at that speed; "
-            "allowed: a drive of at most 3600 s (a higher --speed, or give --duration)"
-        )
 
 
 def run(args: argparse.Namespace) -> int:
@@ -251,9 +145,9 @@ def run(args: argparse.Namespace) -> int:
         settings_file = load_settings(args.controller)
     law = "skyhook" if settings_file is not None else args.controller
     machine = machine_from_arguments(args).name
-    course = _course(args)
+    course = course_from_arguments(args)
     if args.duration is None:
-        _check_drive(course, args.speed)
+        check_drive(course, args.speed)
     if args.compare:
         return _compare(args, machine, course, settings_file)
     scenario = resolve_scenario(

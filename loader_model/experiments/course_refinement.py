@@ -9,7 +9,8 @@ pump saturates, which the linear model cannot show. Here the cost is the nonline
     J(K) = \\sum_{\\text{loads}} a_{total}(K)^2 \\quad (\\text{Eq. } 50),
 
 each a_total from one nominal drive over the paper's course (section 5.3; no board jitter, exact
-sensors) by the closed-loop simulator with the skyhook at 1 kHz. The drive contains lift-off and
+sensors) or over a course of the caller's (boards at any speed, a course file of obstacles) by
+the closed-loop simulator with the skyhook at 1 kHz. The drive contains lift-off and
 landing, so J is not smooth in K; it is minimised by Nelder-Mead (SciPy), not by gradients.
 Stability is kept as a constraint: a K whose linearised closed loop has a margin below σ on any
 load (:func:`~loader_model.control.comfort_design.evaluate_gain`), whose drive fails, or that
@@ -40,6 +41,7 @@ from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
 if TYPE_CHECKING:
     from loader_model.control.settings import ControllerSettings
     from loader_model.plant.scenario import PlantScenario
+    from loader_model.simulation.courses import Course
 
 __all__ = ["course_cost", "refine_on_course"]
 
@@ -106,6 +108,7 @@ def _drive(
     params: np.ndarray | PlantScenario | None,
     machine: str = DEFAULT_MACHINE,
     duration_s: float | None = None,
+    course: Course | None = None,
 ) -> float:
     from loader_model.simulation.courses import paper_course
     from loader_model.simulation.scenario import ride_scenario
@@ -118,9 +121,8 @@ def _drive(
 
         norm = bucket_load(load).pressure_normalisation
     scenario = ride_scenario(plant, "skyhook", _settings(k_fb, machine), pressure_norm_pa=norm)
-    result = simulate(
-        course_input(paper_course(speed_kmh), scenario), scenario, duration_s=duration_s
-    )
+    driven = paper_course(speed_kmh) if course is None else course
+    result = simulate(course_input(driven, scenario), scenario, duration_s=duration_s)
     return float(result.seat_evaluation().total_m_s2)
 
 
@@ -146,8 +148,10 @@ def course_cost(
     *,
     machine: str = DEFAULT_MACHINE,
     duration_s: float | None = None,
+    course: Course | None = None,
 ) -> dict[str, float]:
-    """a_total [m/s²] per load of one nominal drive over the paper's course with gains ``k_fb``.
+    """a_total [m/s²] per load of one nominal drive over ``course`` (default: the paper's at
+    ``speed_kmh``) with gains ``k_fb``.
 
     Parameters
     ----------
@@ -163,6 +167,10 @@ def course_cost(
         A machine name or description file (default the skid-steer; module notes).
     duration_s : float, optional
         Drive only the course's first ``duration_s`` seconds (default the whole course).
+    course : Course, optional
+        The course driven at its own speed (``speed_kmh`` then unused), for example boards at
+        any speed (:func:`~loader_model.simulation.courses.board_course_at`) or a course file
+        (:func:`~loader_model.simulation.obstacles.load_course_file`); default the paper's.
 
     Raises
     ------
@@ -173,7 +181,13 @@ def course_cost(
     name, params = _machine_params(machine, loads, params)
     return {
         load: _drive(
-            gain, load, speed_kmh, None if params is None else params[load], name, duration_s
+            gain,
+            load,
+            speed_kmh,
+            None if params is None else params[load],
+            name,
+            duration_s,
+            course,
         )
         for load in loads
     }
@@ -190,8 +204,10 @@ def refine_on_course(
     progress: bool = True,
     machine: str = DEFAULT_MACHINE,
     duration_s: float | None = None,
+    course: Course | None = None,
 ) -> dict[str, Any]:
-    """Minimise Σ a_total² over ``loads`` on the paper's course from ``gain0`` (module notes).
+    """Minimise Σ a_total² over ``loads`` on ``course`` (default: the paper's at ``speed_kmh``)
+    from ``gain0`` (module notes).
 
     Parameters
     ----------
@@ -200,7 +216,7 @@ def refine_on_course(
     loads : sequence of str
         Bucket loads driven per evaluation.
     speed_kmh : float
-        The course's speed, 9 or 18 km/h.
+        The paper course's speed, 9 or 18 km/h (unused with ``course``).
     margin : float, optional
         Linear stability margin σ [rad/s] (default: the linear design's).
     params : dict, optional
@@ -213,6 +229,9 @@ def refine_on_course(
         A machine name or description file (default the skid-steer; module notes).
     duration_s : float, optional
         Drive only the course's first ``duration_s`` seconds (default the whole course).
+
+    course : Course, optional
+        The course driven at its own speed (:func:`course_cost`); default the paper's.
 
     Returns
     -------
@@ -259,7 +278,9 @@ def refine_on_course(
             seen[key] = (np.inf, {})
             return np.inf
         try:
-            totals = course_cost(k, loads, speed_kmh, params, machine=name, duration_s=duration_s)
+            totals = course_cost(
+                k, loads, speed_kmh, params, machine=name, duration_s=duration_s, course=course
+            )
         except SimulationError:
             refused += 1
             seen[key] = (np.inf, {})

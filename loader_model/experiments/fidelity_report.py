@@ -9,6 +9,7 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
 from importlib import resources
 from typing import Any
@@ -24,7 +25,9 @@ __all__ = [
     "budget_section",
     "comfort_rows",
     "comfort_summary",
+    "largest_standard_error",
     "shipped_budget",
+    "trial_count",
 ]
 
 #: The shipped budget (package data).
@@ -41,6 +44,32 @@ def shipped_budget() -> dict[str, Any] | None:
         return None
     with resources.as_file(entry) as path:
         return read_budget(path)
+
+
+#: z-quantile of the 95 % interval: its half-width over this bounds the standard error from above
+#: (the Welch interval uses Student's t, which is larger for any degrees of freedom).
+_Z95 = 1.959964
+
+
+def trial_count(budget: dict[str, Any]) -> int:
+    """Trials per group of the budget: its ``trials`` entry, else the ``--trials`` of the
+    command that made it, else the command's default (4, the paper's)."""
+    if "trials" in budget:
+        return int(budget["trials"])
+    match = re.search(r"--trials[ =](\d+)", str(budget.get("command", "")))
+    return int(match.group(1)) if match else 4
+
+
+def largest_standard_error(steps: Sequence[dict[str, Any]]) -> float:
+    """The largest standard error of a cell's mean change over every step and cell, in pp
+    (bounded from above by the 95 % interval's half-width over 1.96)."""
+    halves = [
+        (cell["high"] - cell["low"]) / 2.0
+        for step in steps
+        for cell in step["cells"].values()
+        if np.isfinite(cell["high"] - cell["low"])
+    ]
+    return max(halves, default=float("nan")) / _Z95
 
 
 def _interval(cell: dict[str, float]) -> str:
@@ -155,8 +184,12 @@ def budget_section(budget: dict[str, Any] | None) -> tuple[str, dict[str, Rows]]
             "## Fidelity budget: one modelling step at a time\n",
             f"Shipped result `loader_model/data/{BUDGET_FILE}`, made by `{budget['command']}` "
             f"on {budget['date']} in {budget['wall_time_s']:.0f} s (`make fidelity`; a slow test "
-            "checks that it is current). Each step runs the whole Table 6 matrix with the "
-            "report's seeds; the steps add up: Table 5's flow as a cylinder leak, the seat on "
+            f"checks that it is current). Each step runs the whole Table 6 matrix, "
+            f"{trial_count(budget)} trials per group with the report's seed, so that every "
+            f"cell's mean change has a standard error of at most "
+            f"{largest_standard_error(steps):.1f} pp (its 95 % interval's half-width over 1.96); "
+            "the Table 6 above runs the paper's four trials per group and shows what four "
+            "trials give. The steps add up: Table 5's flow as a cylinder leak, the seat on "
             "the rigid chassis, rigid-wheel tyres and Table 3 as printed (as it was); then the "
             "load-holding valves closed while the pump is idle (errata 11); the seat pad under "
             "an occupant (errata 13); the tandem-cam tyres (errata 13); k_φ = +0.22 (errata 12): "

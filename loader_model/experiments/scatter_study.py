@@ -79,8 +79,9 @@ def scatter_rows(
         Base seed (the report's: 0).
     jobs : int
         Worker processes.
-    cells : sequence of (speed in km/h, load, controller), optional
-        The cells to run (default: all twelve of Table 6); their baselines run with them.
+    cells : sequence of tuple, optional
+        The cells to run, each (speed in km/h, load, controller) (default: all twelve of
+        Table 6); their baselines run with them.
     progress : bool
         Show a progress bar.
 

@@ -9,11 +9,14 @@ for the shipped values::
     [cylinders]   # the driven lift cylinder group (fields of CylinderParameters): Eq. 28, 30
     count = { value = 2, unit = "-", source = "..." }
     [hydraulics]  # bulk_modulus and charge_pressure (fields of HydraulicParameters)
+    [tyres]       # each axle's free radius and tandem cam (loader_model.parameters.tyres)
+    R_A = { value = 0.45, unit = "m", source = "..." }
     [loads.empty] # a bucket load case: values of [model] it replaces (m_3, J_3, Q_x, ...)
 
 Every value is checked on loading: a missing or unknown name, a wrong unit (the generated
 ``PARAMETER_UNITS``; the schema's units for the cylinders), no source, or a value outside the
-description's range (points: its ``point_range``; the cylinders: the schema's ranges) raise a
+description's range (points: its ``point_range``; the cylinders: the schema's ranges; the tyres:
+the description's ``[tyres]`` ranges inside :data:`~loader_model.parameters.tyres.TYRE_LIMITS`) raise a
 ValueError naming the file and the entry. The static loads (``F_Ay0``, ``F_By0``, the locked
 cylinders' ``F_<name>0``) are computed by the static equilibrium and may be left out.
 """
@@ -34,6 +37,7 @@ from loader_model.io.files import read_text
 from loader_model.machines import MachineInfo, machine
 from loader_model.parameters.checks import MAX_ROD_TO_PISTON_RATIO
 from loader_model.parameters.hydraulics import CylinderParameters, HydraulicParameters
+from loader_model.parameters.tyres import tyre_table
 
 __all__ = [
     "HYDRAULIC_NAMES",
@@ -48,7 +52,7 @@ __all__ = [
 
 #: The fields of :class:`HydraulicParameters` a machine file gives (the rest is the plant's).
 HYDRAULIC_NAMES = ("bulk_modulus", "charge_pressure")
-_SECTIONS = {"model", "cylinders", "hydraulics", "loads"}
+_SECTIONS = {"model", "cylinders", "hydraulics", "tyres", "loads"}
 
 
 @dataclass(frozen=True)
@@ -71,6 +75,9 @@ class MachineParameters:
         ``section.name`` -> source of every value.
     origin : str
         The file it was read from.
+    tyres : dict
+        Each axle's tyre road geometry by per-axle name (``R_A`` [m], ``ae_A``, ``be_A``,
+        ``ce_A``, ``ls_A``; :mod:`loader_model.parameters.tyres`).
     """
 
     machine: str
@@ -80,6 +87,7 @@ class MachineParameters:
     loads: dict[str, dict[str, float]]
     sources: dict[str, str] = field(repr=False, default_factory=dict)
     origin: str = ""
+    tyres: dict[str, float] = field(default_factory=dict)
 
 
 def _entry(where: str, name: str, raw: Any, unit: str) -> tuple[Any, str]:
@@ -185,6 +193,9 @@ def parse_machine_parameters(text: str, info: MachineInfo, origin: str) -> Machi
         hydraulics[name], sources[f"hydraulics.{name}"] = _schema_value(
             f"{origin} [hydraulics]", HydraulicParameters, name, hyd_raw[name]
         )
+    tyres = tyre_table(
+        f"{origin} [tyres]", info, _section(origin, raw, "tyres"), sources, _entry, _names
+    )
     loads: dict[str, dict[str, float]] = {}
     for case, table in raw.get("loads", {}).items():
         where = f"{origin} [loads.{case}]"
@@ -200,7 +211,7 @@ def parse_machine_parameters(text: str, info: MachineInfo, origin: str) -> Machi
     for case, table in loads.items():
         _check_travel_limits(f"{origin} [loads.{case}]", model | table)
     return MachineParameters(
-        info.name, model, CylinderParameters(**cyl), hydraulics, loads, sources, origin
+        info.name, model, CylinderParameters(**cyl), hydraulics, loads, sources, origin, tyres
     )
 
 

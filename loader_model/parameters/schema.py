@@ -52,6 +52,7 @@ from loader_model.parameters.hydraulics import (
     PumpParameters,
 )
 from loader_model.parameters.seat import SeatParameters
+from loader_model.parameters.tyres import TYRE_LIMITS
 
 __all__ = [
     "AccumulatorParameters",
@@ -238,7 +239,8 @@ class BucketLoad(Sourced):
 
 @dataclass(frozen=True)
 class AxleTyre(TypedLeaves):
-    """Linear tyre spring-damper of one axle, left and right tyres lumped (Eq. 1-4).
+    """The tyres of one axle, left and right lumped: linear spring-damper (Eq. 1-4) and the
+    geometry with which they envelop the road (the road input only, not the plant's parameters).
 
     Attributes
     ----------
@@ -246,12 +248,27 @@ class AxleTyre(TypedLeaves):
         Longitudinal and vertical stiffness in N/m.
     c_x, c_y : float
         Longitudinal and vertical damping in N·s/m.
+    radius : float
+        Free (unloaded) radius R in m: the rigid disc's radius, the scale of the tandem cam.
+    cam_length, cam_height : float
+        Half-length a_e / R and half-height b_e / R of the tandem elliptical cam (Schmeitz;
+        :mod:`~loader_model.simulation.tandem_cam`).
+    cam_exponent : float
+        Its super-ellipse exponent c_e.
+    cam_spacing : float
+        Cam spacing over the static contact length, l_s / (2a), 2a = 2 sqrt(2 R δ − δ²) at the
+        static deflection δ.
     """
 
     k_x: float = field(metadata=si("N/m", _TYRE_STIFFNESS))
     k_y: float = field(metadata=si("N/m", _TYRE_STIFFNESS))
     c_x: float = field(metadata=si("N s/m", _TYRE_DAMPING))
     c_y: float = field(metadata=si("N s/m", _TYRE_DAMPING))
+    radius: float = field(metadata=si("m", TYRE_LIMITS["radius"]))
+    cam_length: float = field(metadata=si("-", TYRE_LIMITS["cam_length"]))
+    cam_height: float = field(metadata=si("-", TYRE_LIMITS["cam_height"]))
+    cam_exponent: float = field(metadata=si("-", TYRE_LIMITS["cam_exponent"]))
+    cam_spacing: float = field(metadata=si("-", TYRE_LIMITS["cam_spacing"]))
 
 
 @dataclass(frozen=True)

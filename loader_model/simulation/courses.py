@@ -93,17 +93,23 @@ class Course:
     settle_s: float
     name: str
 
-    def duration_s(self, wheelbase_m: float, tyre_radius_m: float = DEFAULT_TYRE_RADIUS_M) -> float:
+    def duration_s(
+        self, wheelbase_m: float, tyre_radius_m: float | Sequence[float] = DEFAULT_TYRE_RADIUS_M
+    ) -> float:
         """Drive time in s until the rear axle (``wheelbase_m`` behind the front axle; for more
-        axles the rearmost one's distance) is R past the last vertex plus ``settle_s``."""
-        past_m = self.profile.end_m + wheelbase_m + tyre_radius_m - self.start_m
+        axles the rearmost one's distance) is R past the last vertex plus ``settle_s`` (R: the
+        largest of the axles' radii when one is given per axle)."""
+        many = isinstance(tyre_radius_m, Sequence) and not isinstance(tyre_radius_m, str)
+        radii = tyre_radius_m if many else (tyre_radius_m,)  # checked by road_input
+        radius_m = max((float(r) for r in radii if isinstance(r, int | float) and r > 0), default=0)
+        past_m = self.profile.end_m + wheelbase_m + radius_m - self.start_m
         return max(past_m, 0.0) / self.speed_m_s + self.settle_s
 
     def road_input(
         self,
         wheelbase_m: float | None = None,
         *,
-        tyre_radius_m: float = DEFAULT_TYRE_RADIUS_M,
+        tyre_radius_m: float | Sequence[float] = DEFAULT_TYRE_RADIUS_M,
         sample_rate_hz: float = DEFAULT_SAMPLE_RATE_HZ,
         slope_to_x_m: Sequence[float] | None = None,
         cams: Sequence[TandemCam] | None = None,
@@ -112,8 +118,9 @@ class Course:
     ) -> RoadInput:
         """The drive's road input table (:func:`~loader_model.simulation.travel.road_input`):
         two axles ``wheelbase_m`` apart, or any number at ``axle_offsets_m`` behind the front
-        axle (``cams``: one tandem cam per axle, default rigid discs). The drive lasts until the
-        rearmost axle is past the last vertex (:meth:`duration_s`)."""
+        axle (``cams``: one tandem cam per axle, default rigid discs; ``tyre_radius_m``: one free
+        radius for all axles or one per axle). The drive lasts until the rearmost axle is past
+        the last vertex (:meth:`duration_s`)."""
         if axle_offsets_m is None:
             wheelbase_m = as_number(wheelbase_m, "wheelbase_m", "m", minimum=0.0, maximum=10.0)
             rear_m = wheelbase_m

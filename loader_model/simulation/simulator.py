@@ -42,8 +42,9 @@ from loader_model.simulation.events import DEFAULT_AIRBORNE_MIN_S, find_events
 from loader_model.simulation.result import SimulationResult
 from loader_model.simulation.scenario import Scenario, as_plant, as_scenario
 from loader_model.simulation.stepper import compile_period, rolled_period
-from loader_model.simulation.tandem_cam import DEFAULT_ENVELOPE, TandemCam, check_envelope
-from loader_model.simulation.travel import DEFAULT_TYRE_RADIUS_M, RoadInput
+from loader_model.simulation.tandem_cam import DEFAULT_ENVELOPE, check_envelope
+from loader_model.simulation.travel import RoadInput
+from loader_model.simulation.tyres import axle_cam, axle_tyres
 from loader_model.simulation.validity import ValidityBounds, resolve_bounds
 from loader_model.simulation.validity_check import ModelValidityError, SimulationError
 
@@ -89,11 +90,12 @@ def course_input(
     :class:`~loader_model.simulation.scenario.Scenario` (its static tyre loads are used).
 
     ``envelope`` (:data:`~loader_model.simulation.tandem_cam.ENVELOPES`; default: the
-    Scenario's, else ``"tandem-cam"``): ``"rigid"`` for rigid discs of radius
-    :data:`~loader_model.simulation.travel.DEFAULT_TYRE_RADIUS_M`, ``"tandem-cam"`` for a tandem
-    elliptical cam per axle whose spacing follows that axle's static deflection
+    Scenario's, else ``"tandem-cam"``): ``"rigid"`` for a rigid disc per axle of its tyres' free
+    radius R_i, ``"tandem-cam"`` for a tandem elliptical cam per axle of its tyres' shape
+    (a_e / R_i, b_e / R_i, c_e) whose spacing follows that axle's static deflection
     δ_i = F_iy0 / k_iy (:meth:`~loader_model.simulation.tandem_cam.TandemCam.from_deflection`):
-    the patch, and so the road, differs between bucket loads.
+    the patch, and so the road, differs between bucket loads. The tyres are the machine's
+    parameter set's (:func:`~loader_model.simulation.tyres.axle_tyres`).
     """
     if envelope is None:
         envelope = params.envelope if isinstance(params, Scenario) else DEFAULT_ENVELOPE
@@ -104,14 +106,23 @@ def course_input(
     gains = tuple(
         load / plant.parameter(f"k_{axle}x") for axle, load in zip(axles, loads, strict=True)
     )
+    tyres = axle_tyres(plant)
+    radii = tuple(tyre.radius_m for tyre in tyres)
     cams = None
     if envelope == "tandem-cam":
-        cams = tuple(_axle_cam(plant, a, load) for a, load in zip(axles, loads, strict=True))
+        cams = tuple(
+            axle_cam(plant, axle, tyre, load)
+            for axle, tyre, load in zip(axles, tyres, loads, strict=True)
+        )
     front = plant.parameter(f"{axles[0]}_x")
     if len(axles) == 2:  # the paper's two axles: exactly the table of before (bit-identical)
         wheelbase = front - plant.parameter(f"{axles[1]}_x")
         return course.road_input(
-            wheelbase, sample_rate_hz=sample_rate_hz, slope_to_x_m=gains, cams=cams
+            wheelbase,
+            tyre_radius_m=radii,
+            sample_rate_hz=sample_rate_hz,
+            slope_to_x_m=gains,
+            cams=cams,
         )
     offsets = [front - plant.parameter(f"{axle}_x") for axle in axles]
     if any(b < a for a, b in itertools.pairwise(offsets)) or offsets[-1] > 10.0:
@@ -123,23 +134,11 @@ def course_input(
     return course.road_input(
         axle_offsets_m=offsets,
         axle_names=axles,
+        tyre_radius_m=radii,
         sample_rate_hz=sample_rate_hz,
         slope_to_x_m=gains,
         cams=cams,
     )
-
-
-def _axle_cam(plant: PlantScenario, axle: str, load_n: float) -> TandemCam:
-    """The tandem cam of ``axle`` at its static deflection F_iy0 / k_iy, or ValueError naming it."""
-    deflection_m = load_n / plant.parameter(f"k_{axle}y")
-    try:
-        return TandemCam.from_deflection(DEFAULT_TYRE_RADIUS_M, deflection_m)
-    except ValueError as error:
-        raise ValueError(
-            f"tyre {axle}: static deflection F_{axle}y0 / k_{axle}y = {load_n:.6g} N / "
-            f"{plant.parameter(f'k_{axle}y'):.6g} N/m = {deflection_m:.6g} m is outside the "
-            f"tandem cam's range ({error}); give a stiffer k_{axle}y or envelope='rigid'"
-        ) from None
 
 
 def exogenous_table(
@@ -251,7 +250,9 @@ def simulate(
     state_names, output_names = layout.state_names, layout.output_names
     n_w = len(layout.exogenous_names)
     y_errors, y_steps = _sensor_errors(sensors, count, output_names)
-    bounds = resolve_bounds(validity, params, machine=scenario.plant.machine)
+    bounds = resolve_bounds(
+        validity, params, machine=scenario.plant.machine, tyre_radius_m=road.tyre_radii_m
+    )
     monitor = validity_check.ValidityMonitor(bounds, period_s, layout)
     machine = scenario.plant.machine
     period, backend = compile_period(controller, period_s, substeps, jit, machine)

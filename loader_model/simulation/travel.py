@@ -5,9 +5,10 @@ profile, axle i a distance d_i behind it (``axle_offsets_m``; d_A = 0; for two a
 B a wheelbase L behind it, s_B(t) = s_A(t) − L), so axle i sees the front axle's road delayed by
 d_i / v. Any number of axles, front first, in the order of the machine's ``axles`` (the
 generated plant's road inputs (w_ix, w_iy) per axle in that order). Each tyre envelops the
-ground either as a rigid disc of radius R
+ground either as a rigid disc of its axle's radius R_i
 (:mod:`~loader_model.simulation.envelope`, ``cams=None``) or as a tandem elliptical cam per axle
-(:mod:`~loader_model.simulation.tandem_cam`, whose spacing follows that axle's static deflection).
+(:mod:`~loader_model.simulation.tandem_cam`, whose spacing follows that axle's static deflection);
+axles of different radii or cam shapes are enveloped one by one, each by its own tyre.
 
 The plant's road input (``derive/symbols.py``) is the displacement of each tyre's contact point,
 w = (w_Ax, w_Ay, w_Bx, w_By) in m, and its rate ẇ in m/s:
@@ -54,7 +55,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from loader_model.simulation._checks import as_number
-from loader_model.simulation.envelope import effective_road
+from loader_model.simulation.envelope import MAXIMUM_TYRE_RADIUS_M, effective_road
 from loader_model.simulation.roads import RoadProfile
 from loader_model.simulation.tandem_cam import TandemCam, tandem_cam_axles
 
@@ -64,6 +65,7 @@ __all__ = [
     "ROAD_NAMES",
     "RoadInput",
     "road_input",
+    "tyre_radii",
 ]
 
 #: Free radius of a 12-16.5 skid-steer tyre (overall diameter about 0.84 m) in m.
@@ -91,13 +93,15 @@ class RoadInput:
         (N, n) effective slope tan β under each axle.
     profile : RoadProfile
         The raw profile.
-    speed_m_s, wheelbase_m, start_m, tyre_radius_m, sample_rate_hz : float
+    speed_m_s, wheelbase_m, start_m, sample_rate_hz : float
         The drive: speed, distance from the front to the rearmost axle, front-axle distance at
-        t = 0, tyre radius, table rate.
+        t = 0, table rate.
+    tyre_radius_m : float or tuple of float
+        Free tyre radius R in m: one for every axle, or one per axle (front first).
     slope_to_x_m : tuple of float
         c_i in w_ix = −c_i tan β_i, per axle.
     cams : tuple of TandemCam or None
-        The tandem cam of each axle, or None for the rigid disc of radius ``tyre_radius_m``.
+        The tandem cam of each axle, or None for the rigid disc of each axle's radius.
     axle_offsets_m : tuple of float
         d_i, the distance of each axle behind the front axle in m (first 0; default (0, L)).
     axle_names : tuple of str
@@ -112,7 +116,7 @@ class RoadInput:
     speed_m_s: float
     wheelbase_m: float
     start_m: float
-    tyre_radius_m: float
+    tyre_radius_m: float | tuple[float, ...]
     sample_rate_hz: float
     slope_to_x_m: tuple[float, ...]
     cams: tuple[TandemCam, ...] | None = None
@@ -127,6 +131,13 @@ class RoadInput:
     def envelope(self) -> str:
         """``"rigid"`` or ``"tandem-cam"``."""
         return "rigid" if self.cams is None else "tandem-cam"
+
+    @property
+    def tyre_radii_m(self) -> tuple[float, ...]:
+        """The free tyre radius R_i of each axle in m, front first."""
+        if isinstance(self.tyre_radius_m, tuple):
+            return self.tyre_radius_m
+        return (self.tyre_radius_m,) * self.n_axles
 
     @property
     def duration_s(self) -> float:
@@ -217,7 +228,7 @@ def road_input(
     wheelbase_m: float | None = None,
     duration_s: float,
     start_m: float = 0.0,
-    tyre_radius_m: float = DEFAULT_TYRE_RADIUS_M,
+    tyre_radius_m: float | Sequence[float] = DEFAULT_TYRE_RADIUS_M,
     sample_rate_hz: float = DEFAULT_SAMPLE_RATE_HZ,
     slope_to_x_m: Sequence[float] | None = None,
     cams: Sequence[TandemCam] | None = None,
@@ -238,8 +249,9 @@ def road_input(
         Length of the drive in s, (0, 3600]; the table ends at the last sample not after it.
     start_m : float
         Distance of the front axle A at t = 0 in m.
-    tyre_radius_m : float
-        Rigid-wheel radius R in m (every axle).
+    tyre_radius_m : float or sequence of float
+        Free tyre radius R in m, (0, 2]: one for every axle or one per axle, front first (the
+        rigid disc's radius, and the distance the rearmost axle runs past the last vertex).
     sample_rate_hz : float
         Table rate in Hz, [10, 1e6].
     slope_to_x_m : sequence of float, optional
@@ -247,7 +259,8 @@ def road_input(
         longitudinal tyre stiffness, F_iy0 / k_ix; default zeros (w_x = 0).
     cams : sequence of TandemCam, optional
         One tandem elliptical cam per axle (:meth:`~loader_model.simulation.tandem_cam.
-        TandemCam.from_deflection`); default: rigid discs of radius ``tyre_radius_m``.
+        TandemCam.from_deflection`); default: rigid discs of radius ``tyre_radius_m``. Cams of
+        different shapes (a_e, b_e, c_e) envelop their axles one by one.
     axle_offsets_m : sequence of float, optional
         Any number of axles (instead of ``wheelbase_m``): each axle's distance behind the front
         axle in m, front first, the first 0, each in [0, 10].
@@ -264,6 +277,7 @@ def road_input(
     )
     offsets, names = _axles(wheelbase_m, axle_offsets_m, axle_names)
     n = len(offsets)
+    radii_m = tyre_radii(tyre_radius_m, names)
     duration_s = as_number(
         duration_s, "duration_s", "s", minimum=0.0, maximum=3600.0, strict_minimum=True
     )
@@ -292,10 +306,10 @@ def road_input(
         )
     time_s = np.arange(count) / rate_hz
     distance_m = start_m + speed_m_s * time_s[:, None] - np.array(offsets)
-    height_m, slope, height_rate = _effective(profile, distance_m, tyre_radius_m, cams)
+    height_m, slope, height_rate = _effective(profile, distance_m, radii_m, cams)
     if not np.all(np.isfinite(slope)):
         row, axle = np.argwhere(~np.isfinite(slope))[0]
-        wheel = f"rigid wheel of radius {tyre_radius_m:g} m" if cams is None else "tandem cam"
+        wheel = f"rigid wheel of radius {radii_m[axle]:g} m" if cams is None else "tandem cam"
         raise ValueError(
             f"the {wheel} meets a wall at its equator at "
             f"{distance_m[row, axle]:.6g} m (axle {names[axle]}): the profile has a step at "
@@ -314,7 +328,7 @@ def road_input(
         speed_m_s=speed_m_s,
         wheelbase_m=offsets[-1],
         start_m=start_m,
-        tyre_radius_m=float(tyre_radius_m),
+        tyre_radius_m=radii_m[0] if len(set(radii_m)) == 1 else radii_m,
         sample_rate_hz=rate_hz,
         slope_to_x_m=gains_m,
         cams=cams,
@@ -323,15 +337,49 @@ def road_input(
     )
 
 
+def tyre_radii(tyre_radius_m: object, names: Sequence[str]) -> tuple[float, ...]:
+    """The checked free radius R_i in m of each axle ``names`` (one number: every axle).
+
+    Raises
+    ------
+    ValueError
+        Naming ``tyre_radius_m`` (and the axle) for a radius that is not a finite number in
+        (0, 2] m, or for a sequence that does not give one radius per axle.
+    """
+    limits = {"minimum": 0.0, "maximum": MAXIMUM_TYRE_RADIUS_M, "strict_minimum": True}
+    if isinstance(tyre_radius_m, str) or not isinstance(tyre_radius_m, Sequence | np.ndarray):
+        return (as_number(tyre_radius_m, "tyre_radius_m", "m", **limits),) * len(names)
+    radii = tuple(tyre_radius_m)
+    if len(radii) != len(names):
+        raise ValueError(
+            f"tyre_radius_m must give one radius in m per axle ({', '.join(names)}) or one for "
+            f"all; got {tyre_radius_m!r}"
+        )
+    return tuple(
+        as_number(r, f"tyre_radius_m[{i}] (axle {name})", "m", **limits)
+        for i, (r, name) in enumerate(zip(radii, names, strict=True))
+    )
+
+
 def _effective(
     profile: RoadProfile,
     distance_m: np.ndarray,
-    tyre_radius_m: float,
+    tyre_radius_m: float | tuple[float, ...],
     cams: tuple[TandemCam, ...] | None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Effective height, slope tan β and dh_eff/ds at axle distances (..., n)."""
+    """Effective height, slope tan β and dh_eff/ds at axle distances (..., n): in one pass when
+    every axle has the same tyre, else axle by axle."""
+    radii = tyre_radius_m if isinstance(tyre_radius_m, tuple) else (tyre_radius_m,)
     if cams is None:
-        height_m, slope = effective_road(profile, distance_m, tyre_radius_m)
+        if len(set(radii)) == 1:
+            height_m, slope = effective_road(profile, distance_m, radii[0])
+            return height_m, slope, slope
+        roads = [effective_road(profile, distance_m[..., i], r) for i, r in enumerate(radii)]
+        height_m = np.stack([road.height_m for road in roads], axis=-1)
+        slope = np.stack([road.slope for road in roads], axis=-1)
         return height_m, slope, slope
-    road = tandem_cam_axles(profile, distance_m, cams)
-    return road.height_m, road.slope, road.height_rate
+    if len({(c.half_length_m, c.half_height_m, c.exponent) for c in cams}) == 1:
+        road = tandem_cam_axles(profile, distance_m, cams)
+        return road.height_m, road.slope, road.height_rate
+    each = [tandem_cam_axles(profile, distance_m[..., i : i + 1], (c,)) for i, c in enumerate(cams)]
+    return tuple(np.concatenate(field, axis=-1) for field in zip(*each, strict=True))  # type: ignore[return-value]

@@ -13,11 +13,12 @@ their reasons:
 - **Pitch** θ1 (tip-over): the static stability angles of the machine about the front and the rear
   tyres' contact points, atan(horizontal distance from the combined centre of gravity to the contact
   point / its height above it), with the chassis mass at H and the boom, bucket and load at G at
-  p = 0, the contact points a tyre radius (:data:`~loader_model.simulation.travel.
-  DEFAULT_TYRE_RADIUS_M`) below A and B. Past that angle the machine's weight tips it further over
-  the tyres still on the ground, and the model, whose tyres act at the axle points and which has
-  no bucket or chassis that could touch the ground, no longer describes where it rests. Default
-  loader: 35.9° nose-down and 39.1° nose-up with the full bucket, 41.7° and 30.8° empty.
+  p = 0, the contact points each axle's free tyre radius below it (the radii of the road input
+  the simulator runs on; :data:`~loader_model.simulation.travel.DEFAULT_TYRE_RADIUS_M` by
+  default). Past that angle the machine's weight tips it further over the tyres still on the
+  ground, and the model, whose tyres act at the axle points and which has no bucket or chassis
+  that could touch the ground, no longer describes where it rests. Default loader: 35.9°
+  nose-down and 39.1° nose-up with the full bucket, 41.7° and 30.8° empty.
 - **Boom angle** φ = θ2 − θ1 relative to its operating value (p = 0): the range the cylinder stroke
   allows, piston position 0 to stroke (from the generated cylinder kinematics), widened by
   :data:`END_STOP_MARGIN_RAD` for the end stops' compliance and never past the linkage's dead points
@@ -52,6 +53,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import casadi as ca
@@ -60,7 +62,7 @@ import numpy as np
 from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
 from loader_model.plant.layout import plant_layout
 from loader_model.simulation._checks import as_number
-from loader_model.simulation.travel import DEFAULT_TYRE_RADIUS_M
+from loader_model.simulation.travel import DEFAULT_TYRE_RADIUS_M, tyre_radii
 
 __all__ = [
     "DEFAULT_AIRBORNE_MAX_S",
@@ -136,7 +138,7 @@ def _bodies(machine: str) -> tuple[tuple[str, str | None], ...]:
 
 
 def _stability_angles(
-    params: np.ndarray, tyre_radius_m: float, machine: str = DEFAULT_MACHINE
+    params: np.ndarray, tyre_radius_m: tuple[float, ...], machine: str = DEFAULT_MACHINE
 ) -> tuple[float, float]:
     """Static stability angles (nose-down, nose-up) in rad about the front and rear contacts."""
 
@@ -150,8 +152,8 @@ def _stability_angles(
     x_cg = sum(mass * value(f"{point}_x") for mass, point in moving) / total
     y_cg = sum(mass * value(f"{point}_y") for mass, point in moving) / total
     axles = sorted(
-        (value(f"{a}_x"), value(f"{a}_y") - tyre_radius_m)
-        for a in plant_layout(machine).machine.axles
+        (value(f"{a}_x"), value(f"{a}_y") - radius_m)
+        for a, radius_m in zip(plant_layout(machine).machine.axles, tyre_radius_m, strict=True)
     )
     axles = [axles[0], axles[-1]]
     (rear_x, rear_y), (front_x, front_y) = axles
@@ -211,7 +213,7 @@ def _boom_range(params: np.ndarray, machine: str = DEFAULT_MACHINE) -> tuple[flo
 
 
 @functools.lru_cache(maxsize=64)
-def _bounds_cached(key: bytes, tyre_radius_m: float, machine: str) -> ValidityBounds:
+def _bounds_cached(key: bytes, tyre_radius_m: tuple[float, ...], machine: str) -> ValidityBounds:
     params = np.frombuffer(key, dtype=float)
     down, up = _stability_angles(params, tyre_radius_m, machine)
     boom_down, boom_up = _boom_range(params, machine)
@@ -221,7 +223,7 @@ def _bounds_cached(key: bytes, tyre_radius_m: float, machine: str) -> ValidityBo
 def validity_bounds(
     params: np.ndarray,
     *,
-    tyre_radius_m: float = DEFAULT_TYRE_RADIUS_M,
+    tyre_radius_m: float | Sequence[float] = DEFAULT_TYRE_RADIUS_M,
     machine: str = DEFAULT_MACHINE,
 ) -> ValidityBounds:
     """The default bounds of the plant ``params`` (module notes), cached per parameter vector.
@@ -230,8 +232,9 @@ def validity_bounds(
     ----------
     params : numpy.ndarray
         Plant parameters (:data:`~loader_model.plant.plant_parameters.PLANT_PARAMETER_NAMES`).
-    tyre_radius_m : float
-        Tyre radius in m, (0, 2]: the contact points lie this far below the axles.
+    tyre_radius_m : float or sequence of float
+        Free tyre radius in m, (0, 2], one for all axles or one per axle (front first): each
+        contact point lies this far below its axle.
     machine : str
         The machine of ``params`` (default the skid-steer): its bodies' masses and centres of
         gravity, its outermost axles and its lift cylinder's kinematics.
@@ -252,17 +255,21 @@ def validity_bounds(
     vector = np.ascontiguousarray(params, dtype=float).ravel()
     if vector.size != size:
         raise ValueError(f"params must have {size} values; got {vector.size}")
-    radius = as_number(tyre_radius_m, "tyre_radius_m", "m", minimum=0.0, maximum=2.0,
-                       strict_minimum=True)  # fmt: skip
-    return _bounds_cached(vector.tobytes(), radius, name)
+    radii = tyre_radii(tyre_radius_m, plant_layout(name).machine.axles)
+    return _bounds_cached(vector.tobytes(), radii, name)
 
 
 def resolve_bounds(
-    validity: ValidityBounds | None, params: np.ndarray, *, machine: str = DEFAULT_MACHINE
+    validity: ValidityBounds | None,
+    params: np.ndarray,
+    *,
+    machine: str = DEFAULT_MACHINE,
+    tyre_radius_m: float | Sequence[float] = DEFAULT_TYRE_RADIUS_M,
 ) -> ValidityBounds:
-    """``validity`` checked, or the defaults of ``params`` (of ``machine``) when None."""
+    """``validity`` checked, or the defaults of ``params`` (of ``machine``, on tyres of
+    ``tyre_radius_m``) when None."""
     if validity is None:
-        return validity_bounds(params, machine=machine)
+        return validity_bounds(params, machine=machine, tyre_radius_m=tyre_radius_m)
     if not isinstance(validity, ValidityBounds):
         raise TypeError(f"validity must be a ValidityBounds or None; got {type(validity).__name__}")
     return validity

@@ -27,6 +27,17 @@ def test_design_prints_gains_costs_and_writes_the_figure(tmp_path: Path, capsys)
         (["--road", "Q"], "road class must be one of"),
         (["--speed", "0"], "--speed 0.0"),
         (["--margin", "-1"], "--margin -1.0"),
+        (
+            ["--course", "boards"],
+            "--course with --method optimise: allowed only with --method refine",
+        ),
+        (["--method", "lqr", "--board-height", "0.05"], "--board-height with --method lqr"),
+        (
+            ["--method", "refine", "--speed", "12"],
+            "--speed 12: allowed with --course paper: 9 or 18",
+        ),
+        (["--method", "refine", "--course", "boards", "--board-height", "2"], "--board-height"),
+        (["--method", "refine", "--course", "nowhere.toml"], "nowhere.toml"),
     ],
 )
 def test_design_errors_are_clear_and_write_nothing(

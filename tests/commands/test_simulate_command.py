@@ -140,7 +140,8 @@ def test_board_options_shape_the_board_course():
     """--course boards with the --board-* options is board_course_at with those arguments."""
     import argparse
 
-    from loader_model.commands.simulate_command import _course, add_arguments
+    from loader_model.commands.course_options import course_from_arguments
+    from loader_model.commands.simulate_command import add_arguments
     from loader_model.simulation.courses import board_course_at
 
     parser = argparse.ArgumentParser()
@@ -149,7 +150,7 @@ def test_board_options_shape_the_board_course():
         ["--course", "boards", "--speed", "12", "--board-height", "0.03", "--board-spacing",
          "4", "--board-length", "0.2", "--boards", "3"]
     )  # fmt: skip
-    course = _course(args)
+    course = course_from_arguments(args)
     expected = board_course_at(12.0, spacing_m=4.0, height_m=0.03, length_m=0.2, count=3)
     assert course.name == "3 boards 30 mm x 200 mm, 4 m apart, at 12 km/h" == expected.name
     assert course.profile.distance_m.tobytes() == expected.profile.distance_m.tobytes()

@@ -68,8 +68,8 @@ def test_a_seat_acceleration_stop_is_named_not_the_iso_input_check(
     from loader_model.simulation import simulator
     from loader_model.simulation.validity import resolve_bounds
 
-    def lowered(validity, params, *, machine):
-        bounds = resolve_bounds(validity, params, machine=machine)
+    def lowered(validity, params, **machine_and_tyres):
+        bounds = resolve_bounds(validity, params, **machine_and_tyres)
         return dataclasses.replace(bounds, seat_acceleration_m_s2=30.0)
 
     monkeypatch.setattr(simulator, "resolve_bounds", lowered)

@@ -89,6 +89,20 @@ _PARAMETERS = "\n".join(
     ]
 )  # fmt: skip
 
+#: Each axle's tyre road geometry (free radius and tandem cam), as in the three-axle fixture.
+_TYRES = "\n".join(
+    f'{prefix}_{axle} = {{ unit = "{unit}", description = "{text}", range = {bounds}, '
+    'source = "test" }'
+    for axle in "AB"
+    for prefix, unit, text, bounds in (
+        ("R", "m", "free tyre radius", "[0.2, 1.0]"),
+        ("ae", "-", "cam half-length a_e / R", "[1.0, 1.3]"),
+        ("be", "-", "cam half-height b_e / R", "[1.0, 1.05]"),
+        ("ce", "-", "cam exponent c_e", "[1.5, 2.0]"),
+        ("ls", "-", "cam spacing l_s / 2a", "[0.4, 0.83]"),
+    )
+)
+
 DESCRIPTION = f"""\
 # Test fixture (tests/derive/test_mounts.py): a telescopic boom held by its cylinder, a cab on
 # two mounts with end stops and a suspension seat with end stops. Round test numbers.
@@ -185,4 +199,7 @@ label = "the seat S"
 
 [parameters]
 {_PARAMETERS}
+
+[tyres]
+{_TYRES}
 """

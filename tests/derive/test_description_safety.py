@@ -32,6 +32,12 @@ def _range(value: str) -> str:
     return _edit("range = [1000.0, 20000.0]", f"range = {value}")
 
 
+def _tyre(name: str, old: str, new: str) -> bytes:
+    """The wheel loader with ``old`` replaced by ``new`` in the [tyres] entry ``name``."""
+    line = next(row for row in WHEEL_LOADER.splitlines() if row.startswith(f"{name} = "))
+    return _edit(line, line.replace(old, new, 1) if old else new).encode()
+
+
 CASES = [
     ("binary", b"\x00\x01\x89PNG\r\n\x1a\n" + bytes(range(256)), r"\(file\): not UTF-8 text"),
     ("utf16", WHEEL_LOADER.encode("utf-16"), r"\(file\): not UTF-8 text \(byte 0 is b'\\xff'\)"),
@@ -91,6 +97,25 @@ CASES = [
         _edit('kind = "locked"', 'kind = "floating"').encode(),
         r"actuators\.tilt\.kind: 'floating' is not allowed; allowed: driven, locked",
     ),
+    (
+        "tyre_radius_range",
+        _tyre("R_A", "range = [0.2, 1.0]", "range = [0.2, 3.0]"),
+        r"tyres\.R_A\.range: \[0\.2, 3\] m is not allowed; give a range inside \(0, 2\] m",
+    ),
+    (
+        "tyre_exponent_range",
+        _tyre("ce_B", "range = [1.5, 2.0]", "range = [1.0, 2.0]"),
+        r"tyres\.ce_B\.range: \[1, 2\] - is not allowed; give a range inside \(1, 10\] -",
+    ),
+    ("tyre_nan_range", _tyre("R_B", "[0.2, 1.0]", "[nan, 1.0]"), r"tyres\.R_B\.range: \[nan, 1"),
+    ("tyre_missing", _tyre("R_B", "", ""), r"tyres: missing R_B \[m\]: give each axle's free"),
+    ("tyre_no_source", _tyre("ae_A", ', source = "', ', sources = "'), r"tyres\.ae_A: unknown"),
+    (
+        "tyre_unknown",
+        _tyre("ls_B", "ls_B", "lsB"),
+        r"tyres: unknown tyre parameter 'lsB' \(did you mean 'ls_B'\?\); allowed: R_A, ae_A",
+    ),
+    ("tyre_unit", _tyre("R_A", 'unit = "m"', 'unit = "mm"'), r"tyres\.R_A\.unit: 'mm', expected"),
 ]
 
 

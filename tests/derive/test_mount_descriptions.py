@@ -93,10 +93,11 @@ def test_bad_mount_entries_are_named(mistake: str, tmp_path: Path) -> None:
 def _values(tmp_path: Path, **changes: float) -> tuple[object, dict[str, dict[str, object]]]:
     machine = load_machine(_write(tmp_path, DESCRIPTION))
     points = {f"{k}_{a}": v[i] for k, v in POINTS.items() for i, a in enumerate("xy")}
-    given = VALUES | points | changes
+    tyres = {item.name: item.range[0] if item.range else 1.0 for item in machine.tyres}
+    given = VALUES | points | tyres | changes
     values = {
         item.name: {"value": given[item.name], "unit": item.unit, "source": "test"}
-        for item in machine.parameters
+        for item in (*machine.parameters, *machine.tyres)
         if item.name in given
     }
     return machine, values

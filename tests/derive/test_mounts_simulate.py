@@ -92,7 +92,8 @@ def _variant(folder: Path) -> tuple[Path, Path]:
         for line in description.splitlines()
         if not line.startswith(("k_cab =", "c_cab =", "F_cab0 ="))
     ]
-    lines += [
+    at = lines.index("[parameters]") + 1  # the new parameters in [parameters], not a later table
+    lines[at:at] = [
         f'{name} = {{ unit = "{unit}", description = "{source}", source = "test" }}'
         for name, unit, _, source in NEW
     ]

@@ -144,4 +144,21 @@ F_Ay0 = { unit = "N", description = "static load A", source = "computed" }
 F_By0 = { unit = "N", description = "static load B", source = "computed" }
 F_Ry0 = { unit = "N", description = "static load R", source = "computed" }
 F_cab0 = { unit = "N", description = "static cab mount force", source = "computed" }
+
+[tyres]
+R_A = { unit = "m", description = "free tyre radius", range = [0.2, 1.0], source = "test" }
+ae_A = { unit = "-", description = "cam half-length a_e / R", range = [1.0, 1.3], source = "test" }
+be_A = { unit = "-", description = "cam half-height b_e / R", range = [1.0, 1.05], source = "test" }
+ce_A = { unit = "-", description = "cam exponent c_e", range = [1.5, 2.0], source = "test" }
+ls_A = { unit = "-", description = "cam spacing l_s / 2a", range = [0.4, 0.83], source = "test" }
+R_B = { unit = "m", description = "free tyre radius", range = [0.2, 1.0], source = "test" }
+ae_B = { unit = "-", description = "cam half-length a_e / R", range = [1.0, 1.3], source = "test" }
+be_B = { unit = "-", description = "cam half-height b_e / R", range = [1.0, 1.05], source = "test" }
+ce_B = { unit = "-", description = "cam exponent c_e", range = [1.5, 2.0], source = "test" }
+ls_B = { unit = "-", description = "cam spacing l_s / 2a", range = [0.4, 0.83], source = "test" }
+R_R = { unit = "m", description = "free tyre radius", range = [0.2, 1.0], source = "test" }
+ae_R = { unit = "-", description = "cam half-length a_e / R", range = [1.0, 1.3], source = "test" }
+be_R = { unit = "-", description = "cam half-height b_e / R", range = [1.0, 1.05], source = "test" }
+ce_R = { unit = "-", description = "cam exponent c_e", range = [1.5, 2.0], source = "test" }
+ls_R = { unit = "-", description = "cam spacing l_s / 2a", range = [0.4, 0.83], source = "test" }
 """

@@ -30,7 +30,7 @@ KEPT = {
     "python -m derive my_loader.toml": "my_loader_derive.txt",
     "loader-model simulate --machine my_loader.toml --params my_loader_values.toml --load full "
     "--compare": "my_loader_compare.txt",
-    "loader-model design --machine my_loader.toml --params my_loader_values.toml --margin 0.105 "
+    "loader-model design --machine my_loader.toml --params my_loader_values.toml "
     "--output my_loader_gains.toml --no-progress": "my_loader_design.txt",
     "loader-model simulate --machine my_loader.toml --params my_loader_values.toml --load full "
     "--compare --controller my_loader_gains.toml": "my_loader_compare_designed.txt",

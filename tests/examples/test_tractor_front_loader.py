@@ -2,9 +2,9 @@
 package (a tractor with a front loader: boom and bucket on their own pins, the tilt cylinders
 held, a cab on a sliding mount), derived into a temporary cache, and what the page claims of it:
 its static axle loads equal the hand calculation of its values file, the rear axle lifts off at
-the boards with the full bucket, and the linear comfort design is refused by the design check
+the boards with the full bucket, the linear comfort design is refused by the design check
 (full bucket: worse than the baseline, the pump at its limits, a persistent oscillation) while
-the empty bucket's condition passes."""
+the empty bucket's condition passes, and Table 3's gains pass the full bucket's boards."""
 
 from __future__ import annotations
 
@@ -153,10 +153,10 @@ def test_linear_design_is_refused_naming_the_full_bucket(
     assert "finding(s) over 2 judged conditions" in out
 
 
-def test_table3_gains_fail_the_full_bucket_boards(machine_args, tmp_path: Path, capsys) -> None:
-    """Table 3's gains on the full bucket's boards at 9 km/h: worse than the baseline (measured
-    +13.4 %: 3.438 against 3.031 m/s²), but neither the pump at its limits nor an oscillation
-    that persists (the only finding is the comparison)."""
+def test_table3_gains_pass_the_full_bucket_boards(machine_args, tmp_path: Path, capsys) -> None:
+    """Table 3's gains on the full bucket's boards at 9 km/h, on the tractor's own tyres
+    (0.63 m front, 0.825 m rear): slightly better than the baseline (measured −1.0 %: 2.728
+    against 2.755 m/s²), the pump never at its limits, no finding."""
     conditions = tmp_path / "conditions.toml"
     conditions.write_text(
         '[envelope]\nloads = ["full"]\nboard_speeds_kmh = [9.0]\nroad_classes = []\n'
@@ -164,10 +164,10 @@ def test_table3_gains_fail_the_full_bucket_boards(machine_args, tmp_path: Path, 
         encoding="utf-8",
     )
     argv = ["check-design", "default", *machine_args, "--conditions", str(conditions)]
-    assert main([*argv, "--jobs", "1", "--no-progress"]) == EXIT_CHECK_FAILED
+    assert main([*argv, "--jobs", "1", "--no-progress"]) == 0
     out = capsys.readouterr().out
     row = next(line.split() for line in out.splitlines() if line.startswith("full, boards"))
-    assert row[-1] == "FAIL" and float(row[7]) > 5.0  # change [%], measured +13.4
+    # change [%], measured −1.0: the 2 % allowance is far, the sign within a tenth of a percent
+    assert row[-1] == "pass" and -3.0 < float(row[7]) < -0.1
     assert float(row[9]) == 0.0 and float(row[10]) == 0.0  # the pump never at its limits
-    assert "FAILED: 1 finding(s) over 1 judged conditions" in out
-    assert "  - full, boards 9 km/h: a_total " in out
+    assert "PASSED: 1 conditions judged" in out

@@ -22,6 +22,19 @@ def test_an_unstable_start_is_refused_before_any_drive() -> None:
         refine_on_course(TABLE3_PRINTED_GAIN, loads=("empty",), max_evaluations=3, progress=False)
 
 
+def test_the_cost_drives_the_course_it_is_given() -> None:
+    """Boards at the paper's spacing rule at 9 km/h are the paper's course (equal profiles,
+    tests/simulation); two boards at 12 km/h are another drive."""
+    from loader_model.simulation.courses import board_course_at
+
+    gain = (44.70, -39.39, -12.18, 0.686)
+    paper = course_cost(gain, ("empty",), 9.0, duration_s=4.0)
+    same = course_cost(gain, ("empty",), duration_s=4.0, course=board_course_at(9.0))
+    assert same["empty"] == pytest.approx(paper["empty"], rel=1e-12)
+    other = course_cost(gain, ("empty",), duration_s=4.0, course=board_course_at(12.0, count=2))
+    assert abs(other["empty"] / paper["empty"] - 1.0) > 0.1  # measured: 71 % apart (6.44 / 3.76)
+
+
 @pytest.mark.slow
 def test_refinement_lowers_the_course_cost_and_stays_stable() -> None:
     plants = comfort_plants(("empty",))

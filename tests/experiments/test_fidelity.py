@@ -11,6 +11,8 @@ from loader_model.experiments.fidelity_report import (
     budget_section,
     comfort_rows,
     comfort_summary,
+    largest_standard_error,
+    trial_count,
 )
 from loader_model.experiments.table6 import LOAD_LABELS, PAPER_TABLE_6, SPEED_LABELS
 from loader_model.experiments.variant import AS_BUILT, AS_IT_WAS, ModelVariant
@@ -80,6 +82,8 @@ def test_the_budget_renders_with_its_command_and_every_step() -> None:
               "steps": summaries, "uncertainty": uncertainty}  # fmt: skip
     text, tables = budget_section(budget)
     assert "`loader-model fidelity --trials 4` on 2026-12-01" in text
+    # every cell's interval is +-3 pp: the standard error is at most 3 / 1.96 pp
+    assert "4 trials per group" in text and "standard error of at most 1.5 pp" in text
     assert [row[0] for row in tables["fidelity_budget"][1:]] == [s.label for s in step]
     assert tables["uncertainty"][1] == ["9/empty/skyhook", "-33.6", "25 %", "4 (1)"]
     assert (
@@ -89,6 +93,15 @@ def test_the_budget_renders_with_its_command_and_every_step() -> None:
         ][2]
     )
     assert budget_section(None)[1] == {}
+
+
+def test_the_trial_count_is_the_budgets_or_its_commands() -> None:
+    assert trial_count({"trials": 80, "command": "loader-model fidelity --trials 4"}) == 80
+    assert trial_count({"command": "loader-model fidelity --trials 80 --seed 0"}) == 80
+    assert trial_count({"command": "loader-model fidelity --seed 0"}) == 4  # the default
+    cell = {"change": 1.0, "low": -2.92, "high": 4.92}  # half-width 3.92 = 2 x 1.96
+    # 1.96 rounds the quantile 1.959964: 2.0000367
+    assert largest_standard_error([{"cells": {"a": cell}}]) == pytest.approx(2.0, rel=1e-4)
 
 
 def test_comfort_rows_give_the_level_and_the_exposure_time() -> None:

@@ -52,7 +52,9 @@ def test_shipped_files_load_and_match_the_paper() -> None:
 def test_every_value_has_a_source_and_calibrated_ones_say_so() -> None:
     loader = default_loader()
     assert all(text.strip() for _, text in loader.sources)
-    assert len(loader.sources) == 80  # 67, then k_seal and the 12 of [seat] (issue 21)
+    assert (
+        len(loader.sources) == 90
+    )  # 67, k_seal, the 12 of [seat], each axle's 5 tyre geometry values
     from loader_model.modal.table1 import FREE_PARAMETERS
 
     calibrated = {path for item in FREE_PARAMETERS.values() for path in item.paths}

@@ -114,6 +114,8 @@ STRUCTURE = [
     (set_value("cylinders.count", 2.5), r"cylinders\.count: value 2\.5 is not an integer"),
     (set_value("chassis.mass", True), r"chassis\.mass: value True is not a number"),
     (lambda d: d["chassis"].__setitem__("mass", 2700.0), r"chassis\.mass: expected a table"),
+    (delete("tyres.rear.radius"), r"tyres\.rear\.radius: missing key"),
+    (set_value("tyres.front.radius", math.nan), r"tyres\.front\.radius: value nan is not finite"),
 ]
 
 
@@ -178,6 +180,14 @@ RANGES = [
     ),
     ("accumulator.polytropic_exponent", 0.9, r"polytropic_exponent = 0\.9 .*\[1, 1\.7\]"),
     ("geometry.boom_angle", 2.0, r"geometry\.boom_angle = 2\.0 rad .*\[-1\.5708, 1\.5708\]"),
+    (
+        "tyres.front.radius",
+        0.0,
+        r"tyres\.front\.radius = 0\.0 m is out of range; allowed: \(0, 2\]",
+    ),
+    ("tyres.rear.radius", 2.5, r"tyres\.rear\.radius = 2\.5 m is out of range; allowed: \(0, 2\]"),
+    ("tyres.rear.cam_exponent", 1.0, r"cam_exponent = 1\.0 - .*allowed: \(1, 10\] \(a convex"),
+    ("tyres.front.cam_exponent", 10.5, r"cam_exponent = 10\.5 - .*allowed: \(1, 10\]"),
 ]
 
 

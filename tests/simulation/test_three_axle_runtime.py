@@ -33,6 +33,9 @@ _CYLINDER = {  # value, unit
     "end_stop_damping": (1e5, "N s/m"),
 }
 
+#: Each axle's tyres (as the shipped machines': 0.42 m and the tandem cam's estimates).
+_TYRE = (("R", 0.42, "m"), ("ae", 1.03, "-"), ("be", 1.0, "-"), ("ce", 1.8, "-"), ("ls", 0.8, "-"))
+
 
 def _parameter_text(units: dict[str, str], computed: set[str]) -> str:
     values = VALUES | {f"{k}_{a}": v[i] for k, v in POINTS.items() for i, a in enumerate("xy")}
@@ -52,6 +55,13 @@ def _parameter_text(units: dict[str, str], computed: set[str]) -> str:
         "[hydraulics]",
         'bulk_modulus = { value = 1.64e9, unit = "Pa", source = "test" }',
         'charge_pressure = { value = 2.0e6, unit = "Pa", source = "test" }',
+        "",
+        "[tyres]",
+        *(
+            f'{name}_{axle} = {{ value = {value!r}, unit = "{unit}", source = "test" }}'
+            for axle in "ABR"
+            for name, value, unit in _TYRE
+        ),
         "",
         "[loads.empty]",
         'm_2 = { value = 900.0, unit = "kg", source = "test" }',

@@ -52,8 +52,8 @@ def test_shipped_values_repeat_the_derivation_values() -> None:
     derive_values = tomllib.loads(
         (MACHINES_DIR / "values" / "compact_wheel_loader.toml").read_text()
     )
-    shipped = tomllib.loads(SHIPPED)["model"]
-    for name, entry in shipped.items():
+    shipped = tomllib.loads(SHIPPED)
+    for name, entry in (shipped["model"] | shipped["tyres"]).items():
         assert (entry["value"], entry["unit"]) == (
             derive_values[name]["value"],
             derive_values[name]["unit"],
@@ -97,6 +97,29 @@ def test_registry_errors(tmp_path: Path) -> None:
         ("m_1 = {", "m_9 = {", "missing m_1"),
         ("count = { value = 2,", "count = { value = 9,", r"count = 9 - is out of range"),
         ("k_tilt = { value = 30000000.0", "k_tilt = { value = 1.0", "k_tilt = 1.0 N/m is out"),
+        # each axle's tyres: the description's range (R in [0.2, 1] m, c_e in [1.5, 2])
+        (
+            "R_A = { value = 0.42,",
+            "R_A = { value = 0.0,",
+            r"R_A = 0\.0 m is out of range; allowed: \[0\.2, 1\]",
+        ),
+        (
+            "R_A = { value = 0.42,",
+            "R_A = { value = nan,",
+            r"\[tyres\]: R_A = nan m is out of range",
+        ),
+        (
+            "R_B = { value = 0.42,",
+            "R_B = { value = 2.5,",
+            r"R_B = 2\.5 m is out of range; allowed: \[0\.2, 1\]",
+        ),
+        (
+            "ce_A = { value = 1.8,",
+            "ce_A = { value = 1.0,",
+            r"ce_A = 1\.0 - is out of range; allowed: \[1\.5, 2\]",
+        ),
+        ("R_B = {", "R_Z = {", r"\[tyres\]: missing R_B"),
+        ('R_A = { value = 0.42, unit = "m"', 'R_A = { value = 0.42, unit = "mm"', "R_A: unit 'mm'"),
     ],
 )
 def test_parameter_file_errors_name_the_entry(
