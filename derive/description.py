@@ -22,7 +22,7 @@ from pathlib import Path
 from typing import Any
 
 from derive.description_checks import DescriptionError, check_entries, read_description
-from derive.description_keys import KEYS, parameter_names_problem
+from derive.description_keys import JOINTS, KEYS, parameter_names_problem
 from derive.description_tyres import check_tyres, tyre_parameters
 
 __all__ = [
@@ -34,13 +34,15 @@ __all__ = [
     "ParameterInfo",
     "available_machines",
     "load_machine",
+    "mount_elements",
+    "mount_parameters",
     "static_load_parameters",
     "structural_parameters",
     "tyre_parameters",
 ]
 
 MACHINES_DIR = Path(__file__).resolve().parent / "machines"
-_JOINTS = ("free", "pin", "slider")
+_JOINTS = JOINTS
 _KEYS = KEYS
 #: Source of a static load the description leaves out (:func:`static_load_parameters`).
 STATIC_LOAD_SOURCE = "computed by complete_parameters (static equilibrium)"
@@ -62,6 +64,19 @@ class Body:
     centre_of_gravity: str
     points: dict[str, str]
     direction: tuple[float, float] | None = None
+    mounts: tuple[str, ...] = ()
+    """Two-point mount: the front and rear mount points (points of this body)."""
+    end_stops: bool = False
+    """Travel limits with a stop spring-damper on each mount (:func:`mount_parameters`)."""
+    extension: str | None = None
+    """Slider: the parameter that extends it along its direction at p = 0 (a telescope)."""
+
+    @property
+    def angle(self) -> str | None:
+        """The coordinate that is this body's own absolute angle (None: its parent's)."""
+        if self.joint == "two_mounts":
+            return self.coordinates[1]
+        return {"free": self.coordinates[-1], "pin": self.coordinates[0]}.get(self.joint)
 
 
 @dataclass(frozen=True)
@@ -122,9 +137,33 @@ class Machine:
 
     @property
     def elements(self) -> tuple[str, ...]:
-        """Names of the internal spring-dampers: locked cylinders, then sliding mounts."""
+        """Names of the internal spring-dampers: locked cylinders, then the mounts in body order
+        (a slider's is the body's name, a two-point mount's ``<body>_<point>``)."""
         locked = [item.name for item in self.actuators if item.kind == "locked"]
-        return (*locked, *(body.name for body in self.bodies if body.joint == "slider"))
+        return (*locked, *(name for body in self.bodies for name in mount_elements(body)))
+
+    @property
+    def stops(self) -> tuple[str, ...]:
+        """The elements with end stops (mounts of bodies with ``end_stops = true``)."""
+        return tuple(name for b in self.bodies if b.end_stops for name in mount_elements(b))
+
+
+def mount_elements(body: Body) -> tuple[str, ...]:
+    """The spring-damper elements of a body's joint: a slider one, a two-point mount two."""
+    if body.joint == "slider":
+        return (body.name,)
+    return tuple(f"{body.name}_{point}" for point in body.mounts)
+
+
+def mount_parameters(element: str) -> list[tuple[str, str]]:
+    """(name, unit) of an element's end stops: travel limits from p = 0, stop stiffness and
+    damping (:mod:`derive.elements`)."""
+    return [
+        (f"s_min_{element}", "m"),
+        (f"s_max_{element}", "m"),
+        (f"k_stop_{element}", "N/m"),
+        (f"c_stop_{element}", "N*s/m"),
+    ]
 
 
 def _table(where: str, entry: str, value: Any, allowed: set[str]) -> dict[str, Any]:
@@ -152,10 +191,12 @@ def _body(where: str, name: str, raw: Any) -> Body:
     table = _table(where, entry, raw, _KEYS[joint])
     need = lambda key: _need(where, entry, table, key)  # noqa: E731
     free = joint == "free"
-    coordinates = tuple(need("coordinates")) if free else (need("coordinate"),)
+    several = joint in ("free", "two_mounts")
+    coordinates = tuple(need("coordinates")) if several else (need("coordinate"),)
     if free and len(coordinates) != 3:
         raise DescriptionError(where, f"{entry}.coordinates", "the chassis has (x, y, angle)")
-    direction = tuple(float(v) for v in need("direction")) if joint == "slider" else None
+    mounted = joint in ("slider", "two_mounts")
+    direction = tuple(float(v) for v in need("direction")) if mounted else None
     return Body(
         name=name,
         joint=joint,
@@ -163,12 +204,19 @@ def _body(where: str, name: str, raw: Any) -> Body:
         parent=None if free else need("parent"),
         at=None if free else need("at"),
         coordinates=coordinates,
-        joint_angle=table.get("joint_angle") if joint == "pin" else coordinates[0],
+        joint_angle=table.get("joint_angle")
+        if joint == "pin"
+        else None
+        if joint == "two_mounts"
+        else coordinates[0],
         mass=need("mass"),
         inertia=need("inertia"),
         centre_of_gravity=need("reference") if free else need("centre_of_gravity"),
         points=dict(need("points")),
         direction=direction,  # type: ignore[arg-type]
+        mounts=tuple(need("mounts")) if joint == "two_mounts" else (),
+        end_stops=bool(table.get("end_stops", False)),
+        extension=table.get("extension"),
     )
 
 
@@ -210,6 +258,13 @@ def _check_tree(where: str, bodies: tuple[Body, ...]) -> None:
             )
         if body.centre_of_gravity not in body.points:
             raise DescriptionError(where, f"{entry}.centre_of_gravity", "not a point of the body")
+        for index, mount in enumerate(body.mounts):
+            if mount not in body.points:
+                raise DescriptionError(
+                    where,
+                    f"{entry}.mounts[{index}]",
+                    f"{mount!r} is not a point of the body (points: {', '.join(body.points)})",
+                )
     order = {name: index for index, name in enumerate(names)}
     for body in bodies[1:]:
         if order[body.parent] > order[body.name]:  # type: ignore[index]
@@ -228,8 +283,11 @@ def structural_parameters(machine: Machine) -> list[tuple[str, str]]:
         out += [(f"{kind}_{axle}{axis}", unit) for kind, unit in (("k", "N/m"), ("c", "N*s/m"))
                 for axis in "xy"]  # fmt: skip
     out += [("mu_road", "-"), ("F_transition", "N"), ("tau_slip", "s")]
+    stops = machine.stops
     for element in machine.elements:
         out += [(f"k_{element}", "N/m"), (f"c_{element}", "N*s/m")]
+        out += mount_parameters(element) if element in stops else []
+    out += [(body.extension, "m") for body in machine.bodies if body.extension]
     out += [(name, "N") for name in static_load_parameters(machine)]
     return out
 
@@ -247,8 +305,10 @@ def static_load_parameters(machine: Machine) -> dict[str, str]:
         for axle in machine.axles
     }
     locked = {item.name for item in machine.actuators if item.kind == "locked"}
+    sliders = {body.name for body in machine.bodies if body.joint == "slider"}
     for element in machine.elements:
         kind = f"locked {element} cylinder" if element in locked else f"{element} sliding mount"
+        kind = kind if element in locked | sliders else f"{element} mount"
         out[f"F_{element}0"] = f"static force of the {kind} (from the static equilibrium)"
     return out
 

@@ -5,9 +5,10 @@ too large, nested too deeply, a duplicate key) and :func:`check_entries` every e
 type or value: names that are not Python identifiers (a body, point, coordinate, parameter or the
 machine itself), numbers that are not finite, ranges that are reversed, ``coordinates`` given as a
 string, a coordinate or parameter name used twice, a sensor axis other than ``x`` and ``y``, a
-``[tyres]`` entry without its unit, description, range or source. A key
-that a table does not take (a misspelt one) is named before anything is read from the table, with
-the closest allowed key, the keys still missing and the keys allowed
+``[tyres]`` entry without its unit, description, range or source, a joint that does not exist, a
+two-point mount without exactly two different mount points, ``end_stops`` other than true or
+false. A key that a table does not take (a misspelt one) is named before anything is read from
+the table, with the closest allowed key, the keys still missing and the keys allowed
 (:mod:`derive.description_keys`). Each raises :class:`~derive.description.DescriptionError`
 naming the entry, the value and what is allowed, so that nothing is derived from a description
 that cannot be built. Standard library only.
@@ -152,10 +153,27 @@ class _Checker:
             self.fail(entry, value, "give [low, high] with low < high")
 
 
+def _check_mounts(check: _Checker, entry: str, body: dict[str, Any]) -> None:
+    """The keys of sliding and two-point mounts: ``end_stops`` and ``mounts``."""
+    if "end_stops" in body and not isinstance(body["end_stops"], bool):
+        check.fail(f"{entry}.end_stops", body["end_stops"], "give true or false")
+    if "mounts" in body:
+        value = body["mounts"]
+        if not isinstance(value, list) or len(value) != 2:
+            check.fail(f"{entry}.mounts", value, 'give the 2 mount points ["front", "rear"]')
+        for index, item in enumerate(value):
+            check.name(f"{entry}.mounts[{index}]", item)
+        if value[0] == value[1]:
+            check.fail(f"{entry}.mounts", value, "give two different points")
+
+
 def _check_body(check: _Checker, name: str, raw: Any, names: dict[str, str]) -> None:
     entry = f"bodies.{name}"
     check.body_keys(entry, raw)
     body = check.table(entry, raw)
+    if "joint" in body and body["joint"] not in JOINTS:
+        check.fail(f"{entry}.joint", body["joint"], f"allowed: {', '.join(JOINTS)}")
+    mounted = body.get("joint") == "two_mounts"
     for key in ("parent", "at", "reference", "mass", "inertia", "centre_of_gravity"):
         if key in body:
             check.name(f"{entry}.{key}", body[key])
@@ -171,10 +189,12 @@ def _check_body(check: _Checker, name: str, raw: Any, names: dict[str, str]) -> 
     coordinates: list[tuple[str, Any]] = []
     if "coordinates" in body:
         value = body["coordinates"]
-        if not isinstance(value, list) or len(value) != 3:
-            check.fail(f"{entry}.coordinates", value, 'give a list of 3 names ["x", "y", "angle"]')
+        count, shape = (2, '["bounce", "pitch"]') if mounted else (3, '["x", "y", "angle"]')
+        if not isinstance(value, list) or len(value) != count:
+            check.fail(f"{entry}.coordinates", value, f"give a list of {count} names {shape}")
         coordinates += [(f"{entry}.coordinates[{i}]", item) for i, item in enumerate(value)]
-    for key in ("coordinate", "joint_angle", "mass", "inertia"):
+    _check_mounts(check, entry, body)
+    for key in ("coordinate", "joint_angle", "mass", "inertia", "extension"):
         if key in body:
             coordinates.append((f"{entry}.{key}", body[key]))
     for where, value in coordinates:

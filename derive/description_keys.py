@@ -25,7 +25,7 @@ __all__ = [
 ]
 
 #: The joints of a body.
-JOINTS = ("free", "pin", "slider")
+JOINTS = ("free", "pin", "slider", "two_mounts")
 #: The keys each table of a description takes: the top level, [machine], a body by its joint,
 #: an axle, an actuator, a sensor and a parameter.
 KEYS: dict[str, frozenset[str]] = {
@@ -38,9 +38,14 @@ KEYS: dict[str, frozenset[str]] = {
         {"joint", "label", "parent", "at", "coordinate", "joint_angle", "mass", "inertia"}
         | {"centre_of_gravity", "points"}
     ),
+    # sliding and two-point mounts (end stops, a slider's extension): derive/elements.py
     "slider": frozenset(
         {"joint", "label", "parent", "at", "direction", "coordinate", "mass", "inertia"}
-        | {"centre_of_gravity", "points"}
+        | {"centre_of_gravity", "points", "end_stops", "extension"}
+    ),
+    "two_mounts": frozenset(
+        {"joint", "label", "parent", "at", "direction", "coordinates", "mounts", "mass"}
+        | {"inertia", "centre_of_gravity", "points", "end_stops"}
     ),
     "axle": frozenset({"point", "label"}),
     "actuator": frozenset({"kind", "base", "rod"}),
@@ -58,6 +63,10 @@ REQUIRED: dict[str, frozenset[str]] = {
     ),
     "slider": frozenset(
         {"joint", "parent", "at", "direction", "coordinate", "mass", "inertia"}
+        | {"centre_of_gravity", "points"}
+    ),
+    "two_mounts": frozenset(
+        {"joint", "parent", "at", "direction", "coordinates", "mounts", "mass", "inertia"}
         | {"centre_of_gravity", "points"}
     ),
     "axle": frozenset({"point"}),

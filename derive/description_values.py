@@ -23,7 +23,8 @@ def check_values(machine: Machine, values: dict[str, dict[str, Any]]) -> None:
     ------
     DescriptionError
         For a missing or unknown name (a misspelt one: with the closest name and those still
-        missing), a wrong unit, a value outside the range, no source.
+        missing), a wrong unit, a value outside the range, no source, end stops whose travel
+        limits do not hold the static position (s_min < 0 < s_max).
     """
     where = f"values for {machine.name}"
     known = {item.name: item for item in (*machine.parameters, *machine.tyres)}
@@ -58,3 +59,12 @@ def check_values(machine: Machine, values: dict[str, dict[str, Any]]) -> None:
             raise DescriptionError(where, f"{name}.source", "missing source")
         if item.range is not None and not item.range[0] <= value <= item.range[1]:
             raise DescriptionError(where, f"{name}.value", f"{value} outside {item.range}")
+    for element in machine.stops:
+        low, high = (values[f"s_{end}_{element}"]["value"] for end in ("min", "max"))
+        if not low < 0 < high:
+            raise DescriptionError(
+                where,
+                f"s_min_{element}, s_max_{element}",
+                f"[{low}, {high}]: the travel limits must hold the static position inside, "
+                "s_min < 0 < s_max (travel from p = 0, in m)",
+            )

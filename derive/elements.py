@@ -1,4 +1,4 @@
-"""Force elements of a machine: tyres (contact law of :mod:`derive.contact`), cylinders, mounts.
+r"""Force elements of a machine: tyres (contact law of :mod:`derive.contact`), cylinders, mounts.
 
 - Tyres: per axle, the paper's linear spring-damper in x and y (Eq. 1-4) and the contact law.
 - The driven lift cylinder: its length x_cyl, lever dx_cyl/dφ and angle γ (Eq. 15, 16, 35); its
@@ -7,6 +7,28 @@
   spring of its chamber stiffness k along its line, F = F_0 − k (x − x_0) − c ẋ with generalised
   force F ∂x/∂p; a sliding mount (suspended cab or seat) a spring-damper on its travel s,
   F = F_0 − k s − c ṡ. The preloads F_0 come from the static equilibrium.
+- A two-point mount (a cab on a front and a rear mount): the body bounces by s along the unit
+  direction d at its point ``at`` (a point of the parent, at p = 0 the body's reference) and
+  pitches by its own absolute angle θ_b about that point; mount i at the body's point Q_i
+  deflects along d by
+
+  .. math:: e_i = s + d^T \left(R(\theta_b - \theta_a) - I\right)(Q_i - at)
+
+  (θ_a the parent's angle), with F_i = F_i0 − k_i e_i − c_i ė_i and generalised force
+  F_i ∂e_i/∂p. For small angles e_i ≈ s + x_i θ with x_i the mount's lever along the body
+  (the rigid body on two springs of vehicle dynamics).
+- End stops on a mount (``end_stops = true``): beyond the travel limits s_min < 0 < s_max
+  (from the static position p = 0) a one-sided spring-damper k_stop, c_stop acts on the
+  penetration δ, C¹ in δ like the runtime's cylinder end stops (quadratic over the first
+  :data:`STOP_BAND_M`), its damping faded in by the same ramp and clamped so the stop never
+  pulls:
+
+  .. math:: F_{stop} = \max(k_{stop}\,\mathrm{ramp}(\delta) + c_{stop}\,\dot\delta\,
+            \min(\mathrm{ramp}(\delta)/\delta_0, 1),\ 0)
+
+  with ramp(δ) = 0 for δ ≤ 0, δ²/(2δ_0) below δ_0, δ − δ_0/2 beyond. The elastic part is in
+  K_e, the damped remainder in D_e; inside the travel both are exactly 0, so the static loads
+  and the linear models at p = 0 do not see the stops.
 """
 
 from __future__ import annotations
@@ -22,13 +44,56 @@ from derive.contact import (
     sliding_fraction,
     unilateral,
 )
-from derive.description import Actuator
-from derive.kinematics import TreeKinematics, point, rotation
+from derive.description import Actuator, Body
+from derive.kinematics import TreeKinematics, point, rotation, unit_direction
 from derive.symbols import MachineSymbols, parameter_symbol
 
-__all__ = ["Cylinder", "ElementForces", "TyreForces", "element_forces", "tyre_forces"]
+__all__ = [
+    "STOP_BAND_M",
+    "Cylinder",
+    "ElementForces",
+    "TyreForces",
+    "element_forces",
+    "stop_ramp",
+    "stop_ramp_integral",
+    "tyre_forces",
+]
 
 P = parameter_symbol
+#: δ_0: penetration over which an end stop's spring grows in quadratically (C¹), as the
+#: runtime's cylinder end stops [m].
+STOP_BAND_M = sp.Rational(1, 2000)
+
+
+def stop_ramp(penetration: sp.Expr) -> sp.Expr:
+    """C¹ ramp max(δ, 0): 0 for δ ≤ 0, δ²/(2δ_0) up to δ_0, δ − δ_0/2 beyond."""
+    band = STOP_BAND_M
+    return sp.Piecewise(
+        (0, penetration <= 0),
+        (penetration - band / 2, penetration >= band),
+        (penetration**2 / (2 * band), True),
+    )
+
+
+def stop_ramp_integral(penetration: sp.Expr) -> sp.Expr:
+    """∫ ramp(δ) dδ from 0: the end stop's elastic energy per unit stiffness [m²]."""
+    band = STOP_BAND_M
+    return sp.Piecewise(
+        (0, penetration <= 0),
+        (band**2 / 6 + penetration * (penetration - band) / 2, penetration >= band),
+        (penetration**3 / (6 * band), True),
+    )
+
+
+def _stop_fade(penetration: sp.Expr) -> sp.Expr:
+    """min(ramp(δ)/δ_0, 1) written on δ (no Piecewise in another's condition)."""
+    band = STOP_BAND_M
+    return sp.Piecewise(
+        (0, penetration <= 0),
+        (1, penetration >= 3 * band / 2),
+        (penetration**2 / (2 * band**2), penetration <= band),
+        (penetration / band - sp.Rational(1, 2), True),
+    )
 
 
 @dataclass(frozen=True)
@@ -128,6 +193,8 @@ class ElementForces:
     """Stored energy of the internal springs, 0 at p = 0 [J] (with their preloads)."""
     dissipation: sp.Expr
     """Power dissipated in the internal dampers [W]."""
+    smooth_springs: sp.Matrix
+    """K_e without the end stops (exactly K_e inside the travel: the static equilibrium)."""
 
 
 def _cylinder(sym: MachineSymbols, tree: TreeKinematics, actuator: Actuator) -> Cylinder:
@@ -162,6 +229,8 @@ def element_forces(sym: MachineSymbols, tree: TreeKinematics) -> ElementForces:
     at_rest = {symbol: 0 for symbol in sym.coordinates}
     springs, dampers = sp.zeros(n, 1), sp.zeros(n, 1)
     potential, dissipation = sp.S.Zero, sp.S.Zero
+    stop_springs, stop_dampers = sp.zeros(n, 1), sp.zeros(n, 1)
+    mounts = {f"{b.name}_{q}": (b, q) for b in machine.bodies for q in b.mounts}
     for name in machine.elements:
         k, c, preload = P(f"k_{name}"), P(f"c_{name}"), P(f"F_{name}0")
         locked = next((a for a in machine.actuators if a.name == name), None)
@@ -172,6 +241,10 @@ def element_forces(sym: MachineSymbols, tree: TreeKinematics) -> ElementForces:
                 cylinder.rate,
                 cylinder.generalised,
             )
+        elif name in mounts:
+            extension = _mount_deflection(sym, tree, *mounts[name])
+            lever = sp.Matrix([extension]).jacobian(sym.coordinates).T
+            rate = (lever.T * sym.rates)[0, 0]
         else:
             index = sym.index(machine.body(name).coordinates[0])
             extension, rate = sym.coordinates[index], sym.rates[index]
@@ -181,6 +254,45 @@ def element_forces(sym: MachineSymbols, tree: TreeKinematics) -> ElementForces:
         dampers += lever * (c * rate)
         potential += k * extension**2 / 2 - preload * extension
         dissipation += c * rate**2
+        if name in machine.stops:
+            elastic, damped, energy, loss = _end_stops(name, extension, rate)
+            stop_springs += lever * elastic
+            stop_dampers += lever * damped
+            potential += energy
+            dissipation += loss
     return ElementForces(
-        _cylinder(sym, tree, machine.driven), springs, dampers, potential, dissipation
+        _cylinder(sym, tree, machine.driven),
+        springs + stop_springs,
+        dampers + stop_dampers,
+        potential,
+        dissipation,
+        springs,
     )
+
+
+def _mount_deflection(sym: MachineSymbols, tree: TreeKinematics, body: Body, mount: str) -> sp.Expr:
+    """e_i of the mount at ``mount`` of a two-point mounted ``body`` (module docstring)."""
+    direction = unit_direction(body)
+    parent = sym.machine.body(body.parent)  # type: ignore[arg-type]
+    turn = tree.angles[body.name] - tree.angles[parent.name]
+    lever = point(mount) - point(body.at)  # type: ignore[arg-type]
+    bounce = sp.Symbol(body.coordinates[0], real=True)
+    return bounce + (direction.T * (rotation(turn) - sp.eye(2)) * lever)[0, 0]
+
+
+def _end_stops(
+    name: str, extension: sp.Expr, rate: sp.Expr
+) -> tuple[sp.Expr, sp.Expr, sp.Expr, sp.Expr]:
+    """(elastic, damped remainder) of the end stops' force along −e (left-hand side, like
+    k e), their elastic energy and their dissipated power (module docstring)."""
+    low, high = P(f"s_min_{name}"), P(f"s_max_{name}")
+    k, c = P(f"k_stop_{name}"), P(f"c_stop_{name}")
+    above, below = extension - high, low - extension
+    # each stop pushes out of itself: the upper along −e, the lower along +e
+    upper_elastic, lower_elastic = k * stop_ramp(above), k * stop_ramp(below)
+    upper = sp.Max(upper_elastic + c * rate * _stop_fade(above), 0)
+    lower = sp.Max(lower_elastic - c * rate * _stop_fade(below), 0)
+    elastic = upper_elastic - lower_elastic
+    damped = (upper - upper_elastic) - (lower - lower_elastic)
+    energy = k * (stop_ramp_integral(above) + stop_ramp_integral(below))
+    return elastic, damped, energy, damped * rate

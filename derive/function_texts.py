@@ -43,9 +43,10 @@ def model_specs(mech: LoaderMechanics, nm: Naming, io: dict[str, InputSpec]) -> 
     joint_name, joint = nm.joint_angle(child.name)
     pattern = [0] * n
     pattern[sym.index(child.coordinates[0])] = 1
-    pattern[
-        sym.index(nm.sym.coordinates[2].name if parent.joint == "free" else parent.coordinates[0])
-    ] = -1
+    carrier = parent  # the body whose angle the parent shares (a slider's is its parent's)
+    while carrier.angle is None:
+        carrier = machine.body(carrier.parent)  # type: ignore[arg-type]
+    pattern[sym.index(carrier.angle)] = -1
     vector = "(" + ", ".join({0: "0", 1: "1", -1: "−1"}[v] for v in pattern) + ")"
     forces = f"({n},) generalised forces {nm.forces}"
     both = "both tyres" if len(machine.axles) == 2 else "every tyre"
@@ -105,7 +106,13 @@ def model_specs(mech: LoaderMechanics, nm: Naming, io: dict[str, InputSpec]) -> 
                 "Forces of the internal spring-dampers K_e(p), D_e(p, ṗ), left-hand side.",
                 f"Elements {', '.join(machine.elements)} (derive/elements.py): hydraulically locked\n"
                 "cylinders as springs of their chamber stiffness, sliding mounts as spring-dampers,\n"
-                "with the preloads of the static equilibrium.",
+                "with the preloads of the static equilibrium."
+                + (
+                    f"\nEnd stops (C¹ one-sided spring-dampers beyond the travel limits) on "
+                    f"{', '.join(machine.stops)}."
+                    if machine.stops
+                    else ""
+                ),
                 (io["p"], io["pd"], io["params"]),
                 (
                     OutputSpec("K_e", mech.elements.springs, forces),
@@ -176,7 +183,9 @@ def _positions_texts(nm: Naming) -> tuple[str, str]:
         groups.append(f"the {body.label} points {', '.join(names)}")
     joints = []
     for body in machine.bodies[1:]:
-        kind = "pin constraint" if body.joint == "pin" else "sliding mount"
+        kind = {"pin": "pin constraint", "two_mounts": "two-point mount"}.get(
+            body.joint, "sliding mount"
+        )
         joints.append(f"{body.label.capitalize()} points follow the {kind} at {body.at}")
     return (
         f"World positions of {listing(groups)}.",

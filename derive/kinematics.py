@@ -5,10 +5,12 @@ Every material point P is carried by one body; its world position is
 .. math:: r_P = r_H + \\sum_k R(a_k)\\, v_k
 
 with absolute body angles a_k (coordinates) and vectors v_k in the p = 0 frame (constant for pins,
-linear in the mount coordinate for sliding mounts). Columns of J_P = ∂r_P/∂p and the convective
-acceleration are lists of such (angle, vector) terms, and with S = ẑ× (a quarter turn),
-∂(R(a) v)/∂a = R(a) S v and (R(a) u)·(R(b) v) = uᵀ R(b − a) v, so inner products come out in angle
-differences without a simplification pass.
+linear in the mount coordinate for sliding mounts; a two-point mount adds its bounce along its
+direction at its point ``at`` and turns about that point by its own absolute pitch angle).
+Columns of J_P = ∂r_P/∂p and the convective acceleration are lists of such (angle, vector)
+terms, and with S = ẑ× (a quarter turn), ∂(R(a) v)/∂a = R(a) S v and (R(a) u)·(R(b) v) =
+uᵀ R(b − a) v, so inner products come out in angle differences without a simplification
+pass.
 """
 
 from __future__ import annotations
@@ -20,7 +22,15 @@ import sympy as sp
 from derive.description import Body
 from derive.symbols import MachineSymbols, parameter_symbol
 
-__all__ = ["Term", "TreeKinematics", "point", "rotated_dot", "rotation", "tree_kinematics"]
+__all__ = [
+    "Term",
+    "TreeKinematics",
+    "point",
+    "rotated_dot",
+    "rotation",
+    "tree_kinematics",
+    "unit_direction",
+]
 
 #: (angle, vector): the contribution R(angle) @ vector.
 Term = tuple[sp.Expr, sp.Matrix]
@@ -35,6 +45,12 @@ def rotation(angle: sp.Expr) -> sp.Matrix:
 def point(name: str) -> sp.Matrix:
     """The p = 0 coordinates (name_x, name_y) of a point, relative to H in the chassis frame."""
     return sp.Matrix([parameter_symbol(f"{name}_x"), parameter_symbol(f"{name}_y")])
+
+
+def unit_direction(body: Body) -> sp.Matrix:
+    """The unit vector of a mount's ``direction`` (in its parent's frame)."""
+    direction = sp.Matrix(body.direction)
+    return direction / sp.sqrt(sum(v**2 for v in body.direction))  # type: ignore[union-attr]
 
 
 def rotated_dot(first: Term, second: Term) -> sp.Expr:
@@ -96,12 +112,19 @@ def tree_kinematics(symbols: MachineSymbols) -> TreeKinematics:
             position = positions[body.at] + rotations[body.name] * local  # type: ignore[index]
             return position, [*terms[body.at], (angles[body.name], local)]  # type: ignore[index]
         mount = sp.Symbol(body.coordinates[0], real=True)
-        direction = sp.Matrix(body.direction) / sp.sqrt(sum(v**2 for v in body.direction))  # type: ignore[union-attr]
-        return carried(machine.body(body.parent), vector + direction * mount)  # type: ignore[arg-type]
+        direction = unit_direction(body)
+        parent = machine.body(body.parent)  # type: ignore[arg-type]
+        if body.joint == "slider":
+            travel = mount + (parameter_symbol(body.extension) if body.extension else 0)
+            return carried(parent, vector + direction * travel)
+        # two mounts: bounce along the direction at the point `at`, pitch about it
+        local = vector - point(body.at)  # type: ignore[arg-type]
+        base, base_terms = carried(parent, point(body.at) + direction * mount)  # type: ignore[arg-type]
+        return base + rotations[body.name] * local, [*base_terms, (angles[body.name], local)]
 
     for body in machine.bodies:
-        if body.joint == "pin":
-            angles[body.name] = sp.Symbol(body.coordinates[0], real=True)
+        if body.joint in ("pin", "two_mounts"):
+            angles[body.name] = sp.Symbol(body.angle, real=True)  # type: ignore[arg-type]
             rotations[body.name] = rotation(angles[body.name])
         elif body.joint == "slider":
             angles[body.name] = angles[body.parent]  # type: ignore[index]

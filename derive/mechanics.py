@@ -156,7 +156,9 @@ def derive_mechanics(machine: str = DEFAULT_MACHINE) -> LoaderMechanics:
     if described.elements:
         residual += elements.springs + elements.dampers
 
-    static_loads = _static_loads(sym, tyres.springs + elements.springs, lift.generalised, gravity)
+    static_loads = _static_loads(
+        sym, tyres.springs + elements.smooth_springs, lift.generalised, gravity
+    )
     sensors = tuple(described.sensors)
     accelerations = {letter: acceleration(letter) for letter in sensors}
     return LoaderMechanics(

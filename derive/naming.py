@@ -35,8 +35,7 @@ class Naming:
         self.machine: Machine = sym.machine
         root = self.machine.root
         self.reference = root.centre_of_gravity
-        angles = {root.coordinates[2]} | {b.coordinates[0] for b in self.machine.bodies[1:]
-                                          if b.joint == "pin"}  # fmt: skip
+        angles = {b.angle for b in self.machine.bodies if b.angle}
         self.is_angle = [symbol.name in angles for symbol in sym.coordinates]
         self.n = len(sym.coordinates)
 
@@ -71,7 +70,6 @@ class Naming:
     def angle(self, body_name: str) -> str:
         """Pretty absolute angle of a body (a mount's is its parent's)."""
         body = self.machine.body(body_name)
-        while body.joint == "slider":
+        while body.angle is None:
             body = self.machine.body(body.parent)  # type: ignore[arg-type]
-        index = 2 if body.joint == "free" else 0
-        return _pretty(body.coordinates[index])
+        return _pretty(body.angle)

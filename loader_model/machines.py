@@ -269,6 +269,8 @@ def _angle_coordinate(bodies: dict[str, Any], name: str) -> str:
         return body["coordinates"][2]
     if body["joint"] == "slider":
         return _angle_coordinate(bodies, body["parent"])
+    if body["joint"] == "two_mounts":
+        return body["coordinates"][1]
     return body["coordinate"]
 
 
@@ -288,10 +290,13 @@ def _structure(raw: dict[str, Any]) -> dict[str, Any]:
     )
     axles = tuple(item["point"] for item in raw["axles"])
     tyres = raw.get("tyres", {})
-    # the internal spring-dampers' preloads, as derive names them: locked cylinders, then
-    # sliding mounts (a suspended cab or seat), each F_<name>0
+    # the internal spring-dampers' preloads, as derive names them: locked cylinders, then the
+    # mounts in body order (a slider F_<body>0, a two-point mount F_<body>_<point>0 per mount)
     locked = [f"F_{item.name}0" for item in cylinders if item.kind == "locked"]
-    locked += [f"F_{name}0" for name, body in bodies.items() if body["joint"] == "slider"]
+    for name, body in bodies.items():
+        if body["joint"] == "slider":
+            locked.append(f"F_{name}0")
+        locked += [f"F_{name}_{point}0" for point in body.get("mounts", ())]
     circuit = raw.get("circuit", {})
     return {
         "circuit": circuit.get("kind", "pump"),
@@ -307,6 +312,7 @@ def _structure(raw: dict[str, Any]) -> dict[str, Any]:
         "length_coordinates": (
             *chassis["coordinates"][:2],
             *(body["coordinate"] for body in bodies.values() if body["joint"] == "slider"),
+            *(body["coordinates"][0] for body in bodies.values() if body["joint"] == "two_mounts"),
         ),
         "axles": axles,
         "cylinders": cylinders,

@@ -227,6 +227,9 @@ def parse_machine_parameters(text: str, info: MachineInfo, origin: str) -> Machi
             loads[case][name], sources[f"loads.{case}.{name}"] = _model_value(
                 where, info, name, item
             )
+    _check_travel_limits(f"{origin} [model]", model)
+    for case, table in loads.items():
+        _check_travel_limits(f"{origin} [loads.{case}]", model | table)
     valve_values = valve_table(origin, raw, info, sources)
     return MachineParameters(
         info.name,
@@ -308,7 +311,8 @@ def check_machine_model_values(info: MachineInfo, values: Mapping[str, float]) -
     """Raise ValueError for a model value of machine ``info`` outside its description's range.
 
     A static tyre load (``F_<axle>y0``), when given, must be compressive; the axles must be in
-    the description's order, front first (the first axle ahead of the second). Names without a
+    the description's order, front first (the first axle ahead of the second); the travel limits
+    of an end stop (``s_min_<element>``, ``s_max_<element>``) must hold p = 0 inside. Names without a
     range are not checked; ``g = 0`` is allowed (the analysis without gravity).
     """
     tyre_loads = {f"F_{axle}y0" for axle in info.axles}
@@ -335,3 +339,17 @@ def check_machine_model_values(info: MachineInfo, values: Mapping[str, float]) -
             f"model parameters {front} = {values[front]!r} and {rear} = {values[rear]!r}: the "
             f"front axle must be ahead of the rear axle ({front} > {rear})"
         )
+    _check_travel_limits("model parameters", values)
+
+
+def _check_travel_limits(where: str, values: Mapping[str, float]) -> None:
+    """Refuse end stops (``s_min_<element>``, ``s_max_<element>``) that miss p = 0."""
+    for low_name in (name for name in values if name.startswith("s_min_")):
+        high_name = "s_max_" + low_name.removeprefix("s_min_")
+        low, high = values[low_name], values.get(high_name, math.inf)
+        if not low < 0.0 < high:
+            raise ValueError(
+                f"{where}: {low_name} = {low!r} m and {high_name} = {high!r} m: the end stops' "
+                "travel limits must hold the static position inside (s_min < 0 < s_max, travel "
+                "from p = 0)"
+            )
