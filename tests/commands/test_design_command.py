@@ -83,6 +83,7 @@ def test_simulate_names_the_allowed_controllers(capsys) -> None:
     assert "allowed: baseline, passive, virtual-accumulator, skyhook" in capsys.readouterr().err
 
 
+@pytest.mark.slow  # 7.7 s: a design and its check over the envelope, twice
 def test_gains_that_fail_the_check_are_not_written_unless_forced(tmp_path: Path, capsys) -> None:
     """The linear comfort design of the empty bucket makes the 40 mm boards at 9 km/h worse than
     the baseline on the nonlinear machine (the linear plant misjudges the boards): refused, the

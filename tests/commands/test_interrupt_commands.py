@@ -112,7 +112,11 @@ def _reproduce(output: Path) -> tuple[str, ...]:
     return ("reproduce", "--output", str(output), "--trials", "2", "--jobs", "2", "--no-progress")
 
 
-@pytest.mark.parametrize("number", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+@pytest.mark.parametrize(
+    "number",
+    [signal.SIGINT, pytest.param(signal.SIGTERM, marks=pytest.mark.slow)],  # 4-4.5 s each
+    ids=["SIGINT", "SIGTERM"],
+)
 def test_interrupted_reproduce_says_so_in_one_line(tmp_path: Path, commands, number) -> None:
     output = tmp_path / "out" / "report"
     run = commands(*_reproduce(output))
@@ -163,6 +167,7 @@ def test_interrupted_robustness_says_what_is_saved(tmp_path: Path, commands) -> 
     assert _hidden(output) == []
 
 
+@pytest.mark.slow  # 5.7 s: a study started, killed and started again
 def test_killed_robustness_leaves_no_process_and_the_next_run_cleans_up(
     tmp_path: Path, commands
 ) -> None:

@@ -42,6 +42,7 @@ def test_linear_changes_follow_the_paper_on_the_circuit_and_the_seat_pad() -> No
     assert all(leaky[c] > 0.0 for c in ("passive", "virtual_accumulator", "skyhook"))
 
 
+@pytest.mark.slow  # 4.8 s of Table 6 trials
 def test_overrides_scale_or_replace_and_gains_reach_the_skyhook() -> None:
     doubled = board_changes("empty", 9.0, {"c_Ay": "x2", "c_By": "x2"})
     assert doubled["baseline a_total"] < board_changes("empty", 9.0)["baseline a_total"]
