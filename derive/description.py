@@ -12,7 +12,8 @@ The format is drawn in ``derive/machine.schema.json``; :func:`load_machine` chec
 :class:`DescriptionError` naming the offending entry.
 
 Only the standard library is imported, so the runtime may import this module later (it has no
-SymPy dependency); the structural parameter order is :func:`structural_parameters`.
+SymPy dependency); the structural parameter order is :func:`structural_parameters`, the
+parameters' reading :mod:`derive.description_parameters`.
 """
 
 from __future__ import annotations
@@ -21,8 +22,21 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from derive.description_checks import DescriptionError, check_entries, read_description
-from derive.description_keys import JOINTS, KEYS, parameter_names_problem
+from derive.description_checks import (
+    DescriptionError,
+    check_entries,
+    read_description,
+    required_entry,
+    table_entry,
+)
+from derive.description_keys import JOINTS, KEYS
+from derive.description_parameters import (
+    ParameterInfo,
+    mount_parameters,
+    parameter_infos,
+    static_load_parameters,
+    structural_parameters,
+)
 from derive.description_tyres import check_tyres, tyre_parameters
 
 __all__ = [
@@ -44,8 +58,6 @@ __all__ = [
 MACHINES_DIR = Path(__file__).resolve().parent / "machines"
 _JOINTS = JOINTS
 _KEYS = KEYS
-#: Source of a static load the description leaves out (:func:`static_load_parameters`).
-STATIC_LOAD_SOURCE = "computed by complete_parameters (static equilibrium)"
 
 
 @dataclass(frozen=True)
@@ -87,17 +99,6 @@ class Actuator:
     kind: str
     base: str
     rod: str
-
-
-@dataclass(frozen=True)
-class ParameterInfo:
-    """One parameter of the description: unit, meaning, physical range and source."""
-
-    name: str
-    unit: str
-    description: str
-    range: tuple[float, float] | None = None
-    source: str = ""
 
 
 @dataclass(frozen=True)
@@ -155,41 +156,13 @@ def mount_elements(body: Body) -> tuple[str, ...]:
     return tuple(f"{body.name}_{point}" for point in body.mounts)
 
 
-def mount_parameters(element: str) -> list[tuple[str, str]]:
-    """(name, unit) of an element's end stops: travel limits from p = 0, stop stiffness and
-    damping (:mod:`derive.elements`)."""
-    return [
-        (f"s_min_{element}", "m"),
-        (f"s_max_{element}", "m"),
-        (f"k_stop_{element}", "N/m"),
-        (f"c_stop_{element}", "N*s/m"),
-    ]
-
-
-def _table(where: str, entry: str, value: Any, allowed: set[str]) -> dict[str, Any]:
-    if not isinstance(value, dict):
-        raise DescriptionError(where, entry, "expected a table")
-    for key in value:
-        if key not in allowed:
-            raise DescriptionError(
-                where, entry, f"unknown key {key!r} (allowed: {', '.join(sorted(allowed))})"
-            )
-    return value
-
-
-def _need(where: str, entry: str, table: dict[str, Any], key: str) -> Any:
-    if key not in table:
-        raise DescriptionError(where, f"{entry}.{key}", "missing")
-    return table[key]
-
-
 def _body(where: str, name: str, raw: Any) -> Body:
     entry = f"bodies.{name}"
     joint = raw.get("joint") if isinstance(raw, dict) else None
     if joint not in _JOINTS:
         raise DescriptionError(where, f"{entry}.joint", f"must be one of {', '.join(_JOINTS)}")
-    table = _table(where, entry, raw, _KEYS[joint])
-    need = lambda key: _need(where, entry, table, key)  # noqa: E731
+    table = table_entry(where, entry, raw, _KEYS[joint])
+    need = lambda key: required_entry(where, entry, table, key)  # noqa: E731
     free = joint == "free"
     several = joint in ("free", "two_mounts")
     coordinates = tuple(need("coordinates")) if several else (need("coordinate"),)
@@ -271,90 +244,6 @@ def _check_tree(where: str, bodies: tuple[Body, ...]) -> None:
             raise DescriptionError(where, f"bodies.{body.name}", "list a parent before its child")
 
 
-def structural_parameters(machine: Machine) -> list[tuple[str, str]]:
-    """(name, unit) of the parameter vector, in the order of the generated functions."""
-    out: list[tuple[str, str]] = []
-    for body in machine.bodies:
-        out += [(body.mass, "kg"), (body.inertia, "kg*m^2")]
-    out.append(("g", "m/s^2"))
-    for body in machine.bodies:
-        out += [(f"{point}_{axis}", "m") for point in body.points for axis in "xy"]
-    for axle in machine.axles:
-        out += [(f"{kind}_{axle}{axis}", unit) for kind, unit in (("k", "N/m"), ("c", "N*s/m"))
-                for axis in "xy"]  # fmt: skip
-    out += [("mu_road", "-"), ("F_transition", "N"), ("tau_slip", "s")]
-    stops = machine.stops
-    for element in machine.elements:
-        out += [(f"k_{element}", "N/m"), (f"c_{element}", "N*s/m")]
-        out += mount_parameters(element) if element in stops else []
-    out += [(body.extension, "m") for body in machine.bodies if body.extension]
-    out += [(name, "N") for name in static_load_parameters(machine)]
-    return out
-
-
-def static_load_parameters(machine: Machine) -> dict[str, str]:
-    """The static loads the derivation computes at rest, name -> description, in the order of
-    the parameter vector: the vertical tyre load of each axle (``F_<axle>y0``), then the force of
-    each internal spring-damper (``F_<element>0``: locked cylinders, then sliding mounts).
-
-    The generated ``complete_parameters`` replaces whatever value is given for them, so a
-    description may leave them out of ``[parameters]`` (they are then described as here).
-    """
-    out = {
-        f"F_{axle}y0": f"static vertical tyre load at {axle} (from the static equilibrium)"
-        for axle in machine.axles
-    }
-    locked = {item.name for item in machine.actuators if item.kind == "locked"}
-    sliders = {body.name for body in machine.bodies if body.joint == "slider"}
-    for element in machine.elements:
-        kind = f"locked {element} cylinder" if element in locked else f"{element} sliding mount"
-        kind = kind if element in locked | sliders else f"{element} mount"
-        out[f"F_{element}0"] = f"static force of the {kind} (from the static equilibrium)"
-    return out
-
-
-def _point_parameter(machine_root: str, body: Body, point: str, axis: str, where: str) -> str:
-    place = "chassis point" if body.joint == "free" else f"{body.label} point at p = 0"
-    return f"{axis} of {body.points[point]} ({place}, relative to {machine_root})"
-
-
-def _is_point_parameter(machine: Machine, name: str) -> bool:
-    return name[-2:] in ("_x", "_y") and any(name[:-2] in body.points for body in machine.bodies)
-
-
-def _parameters(where: str, raw: dict[str, Any], machine: Machine) -> tuple[ParameterInfo, ...]:
-    if not isinstance(raw, dict):
-        raise DescriptionError(where, "parameters", "expected a table")
-    table = raw
-    loads = static_load_parameters(machine)
-    structure = structural_parameters(machine)
-    points = {name for name, _ in structure if _is_point_parameter(machine, name)}
-    problem = parameter_names_problem(table, structure, points, loads)
-    if problem is not None:
-        raise DescriptionError(where, "parameters", problem)
-    out: list[ParameterInfo] = []
-    reference = machine.root.centre_of_gravity
-    for name, unit in structural_parameters(machine):
-        body = next((b for b in machine.bodies if name[:-2] in b.points), None)
-        if body is not None and name[-2:] in ("_x", "_y"):
-            text = _point_parameter(reference, body, name[:-2], name[-1], where)
-            out.append(ParameterInfo(name, unit, text, machine.point_range))
-            continue
-        if name in loads and name not in table:
-            out.append(ParameterInfo(name, unit, loads[name], None, STATIC_LOAD_SOURCE))
-            continue
-        entry = f"parameters.{name}"
-        item = _table(where, entry, _need(where, "parameters", table, name), _KEYS["parameter"])
-        if "unit" not in item:
-            raise DescriptionError(where, f"{entry}.unit", "missing unit")
-        if item["unit"] != unit:
-            raise DescriptionError(where, f"{entry}.unit", f"{item['unit']!r}, expected {unit!r}")
-        bounds = tuple(float(v) for v in item["range"]) if "range" in item else None
-        text = _need(where, entry, item, "description")
-        out.append(ParameterInfo(name, unit, text, bounds, item.get("source", "")))  # type: ignore[arg-type]
-    return tuple(out)
-
-
 def _check_references(where: str, machine: Machine) -> None:
     def body_of(entry: str, point: str) -> Body:
         try:
@@ -395,38 +284,43 @@ def load_machine(source: str | Path) -> Machine:
     where = path.name
     raw = read_description(path)
     check_entries(where, raw)
-    raw = _table(where, "(top level)", raw, _KEYS[""])
-    head = _table(where, "machine", _need(where, "(top level)", raw, "machine"), _KEYS["machine"])
-    bodies_raw = _table(
-        where, "bodies", _need(where, "(top level)", raw, "bodies"), set(raw["bodies"])
+    raw = table_entry(where, "(top level)", raw, _KEYS[""])
+    head = table_entry(
+        where, "machine", required_entry(where, "(top level)", raw, "machine"), _KEYS["machine"]
+    )
+    bodies_raw = table_entry(
+        where, "bodies", required_entry(where, "(top level)", raw, "bodies"), set(raw["bodies"])
     )
     bodies = tuple(_body(where, name, value) for name, value in bodies_raw.items())
     _check_tree(where, bodies)
     axles = []
     for index, axle in enumerate(raw.get("axles", [])):
         axles.append(
-            _need(
+            required_entry(
                 where,
                 f"axles[{index}]",
-                _table(where, f"axles[{index}]", axle, _KEYS["axle"]),
+                table_entry(where, f"axles[{index}]", axle, _KEYS["axle"]),
                 "point",
             )
         )
     actuators = tuple(
-        Actuator(name, _need(where, f"actuators.{name}", item, "kind"),
-                 _need(where, f"actuators.{name}", item, "base"),
-                 _need(where, f"actuators.{name}", item, "rod"))
+        Actuator(name, required_entry(where, f"actuators.{name}", item, "kind"),
+                 required_entry(where, f"actuators.{name}", item, "base"),
+                 required_entry(where, f"actuators.{name}", item, "rod"))
         for name, item in raw.get("actuators", {}).items()
-        if _table(where, f"actuators.{name}", item, _KEYS["actuator"]) is not None
+        if table_entry(where, f"actuators.{name}", item, _KEYS["actuator"]) is not None
     )  # fmt: skip
     sensors = {
-        point: (item.get("label", point), tuple(_need(where, f"sensors.{point}", item, "axes")))
+        point: (
+            item.get("label", point),
+            tuple(required_entry(where, f"sensors.{point}", item, "axes")),
+        )
         for point, item in raw.get("sensors", {}).items()
-        if _table(where, f"sensors.{point}", item, _KEYS["sensor"]) is not None
+        if table_entry(where, f"sensors.{point}", item, _KEYS["sensor"]) is not None
     }
     machine = Machine(
-        name=_need(where, "machine", head, "name"),
-        title=_need(where, "machine", head, "title"),
+        name=required_entry(where, "machine", head, "name"),
+        title=required_entry(where, "machine", head, "title"),
         path=path,
         bodies=bodies,
         axles=tuple(axles),
@@ -436,7 +330,9 @@ def load_machine(source: str | Path) -> Machine:
         point_range=tuple(head.get("point_range", (-10.0, 10.0))),  # type: ignore[arg-type]
     )
     _check_references(where, machine)
-    parameters = _parameters(where, _need(where, "(top level)", raw, "parameters"), machine)
+    parameters = parameter_infos(
+        where, required_entry(where, "(top level)", raw, "parameters"), machine
+    )
     tyres = tuple(ParameterInfo(*item) for item in check_tyres(where, raw, machine.axles))
     return Machine(**{**machine.__dict__, "parameters": parameters, "tyres": tyres})
 

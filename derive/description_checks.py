@@ -290,3 +290,22 @@ def _check_circuit(check: _Checker, raw: Any) -> None:
                 item["supply"],
                 f"allowed: {', '.join(map(repr, CIRCUIT_SUPPLIES))}",
             )
+
+
+def table_entry(where: str, entry: str, value: Any, allowed: set[str]) -> dict[str, Any]:
+    """``value`` as a table whose keys are all in ``allowed``, or DescriptionError naming ``entry``."""
+    if not isinstance(value, dict):
+        raise DescriptionError(where, entry, "expected a table")
+    for key in value:
+        if key not in allowed:
+            raise DescriptionError(
+                where, entry, f"unknown key {key!r} (allowed: {', '.join(sorted(allowed))})"
+            )
+    return value
+
+
+def required_entry(where: str, entry: str, table: dict[str, Any], key: str) -> Any:
+    """``table[key]``, or DescriptionError naming ``entry.key`` as missing."""
+    if key not in table:
+        raise DescriptionError(where, f"{entry}.{key}", "missing")
+    return table[key]
