@@ -14,12 +14,13 @@ from pathlib import Path
 import pytest
 
 from loader_model.plant.scenario import resolve_plant
+from tests.docs.test_quoted_numbers import flat
 
 GUIDE = Path(__file__).resolve().parents[2] / "docs" / "guide"
 
 
 def _page(name: str) -> str:
-    return " ".join((GUIDE / name).read_text(encoding="utf-8").split())
+    return flat((GUIDE / name).read_text(encoding="utf-8"))
 
 
 @pytest.fixture(scope="module")

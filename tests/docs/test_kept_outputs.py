@@ -21,6 +21,7 @@ from pathlib import Path
 
 import pytest
 
+from tests.docs.test_quoted_numbers import flat
 from tests.docs.test_tutorial_blocks import is_excerpt, shown_outputs
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -424,10 +425,6 @@ def quotations() -> list[tuple[str, str]]:
         *_reproduction_quotations(),
         *_robustness_quotations(),
     ]
-
-
-def flat(text: str) -> str:
-    return " ".join(text.split())
 
 
 @pytest.mark.parametrize(("name", "quote"), quotations(), ids=lambda v: v[:50])
