@@ -7,15 +7,15 @@ Vehicle Dynamics, 3rd ed., 2012, section 10.2), whose lengths are stated in unit
 tyre property files state them (``ELLIPS_LENGTH``, ``ELLIPS_HEIGHT``, ``ELLIPS_ORDER``,
 ``ELLIPS_SHIFT``):
 
-=============  ==========  ====  =========================================================
-per axle X      grouped     unit  meaning
-=============  ==========  ====  =========================================================
-``R_X``        radius      m     free (unloaded) radius R
-``ae_X``       cam_length  \\-    cam half-length a_e / R
-``be_X``       cam_height  \\-    cam half-height b_e / R
-``ce_X``       cam_exponent \\-   super-ellipse exponent c_e
-``ls_X``       cam_spacing \\-    cam spacing l_s over the static contact length 2a
-=============  ==========  ====  =========================================================
+=============  ============  ====  =======================================================
+per axle X     grouped       unit  meaning
+=============  ============  ====  =======================================================
+``R_X``        radius        m     free (unloaded) radius R
+``ae_X``       cam_length    \\-    cam half-length a_e / R
+``be_X``       cam_height    \\-    cam half-height b_e / R
+``ce_X``       cam_exponent  \\-    super-ellipse exponent c_e
+``ls_X``       cam_spacing   \\-    cam spacing l_s over the static contact length 2a
+=============  ============  ====  =======================================================
 
 The skid-steer's grouped parameter file gives them in ``[tyres.front]`` and ``[tyres.rear]``
 (:class:`~loader_model.parameters.schema.AxleTyre`), every other machine's flat file in its
