@@ -68,7 +68,7 @@ calibrate-table6: setup
 ## fidelity: the fidelity budget of Table 6 and the uncertainty study over the estimated
 ## parameters; ships loader_model/data/fidelity_budget.json (minutes; the report renders it)
 fidelity: setup
-	$(VENV)/bin/loader-model fidelity --output loader_model/data/fidelity_budget.json
+	$(VENV)/bin/loader-model fidelity --trials 80 --output loader_model/data/fidelity_budget.json
 
 ## scatter: the model's Table 6 trial scatter and means from 150 trials per group beside the
 ## scatter the paper's p-values imply; ships loader_model/data/table6_scatter.csv (minutes; the
