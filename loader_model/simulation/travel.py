@@ -49,6 +49,8 @@ most v Δ / (4 f_s). Measured on the paper's course with R = 0.42 m (Δ = 0.47) 
 
 from __future__ import annotations
 
+import hashlib
+from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -74,6 +76,12 @@ DEFAULT_TYRE_RADIUS_M = 0.42
 DEFAULT_SAMPLE_RATE_HZ = 1000.0
 #: Order of the columns of :attr:`RoadInput.road_m` (the generated plant's ``road`` input).
 ROAD_NAMES = ("w_Ax", "w_Ay", "w_Bx", "w_By")
+#: Effective roads a process keeps (:func:`_effective_table`, least recently used out): the
+#: design check drives each condition with three controllers over one road, the design on the
+#: machine and the course refinement drive the same roads with every candidate's gains, and a
+#: tandem cam over an ISO 8608 road costs about 0.1 s.
+EFFECTIVE_ROADS_KEPT = 8
+_EFFECTIVE_ROADS: OrderedDict[tuple, tuple[np.ndarray, np.ndarray, np.ndarray]] = OrderedDict()
 
 
 @dataclass(frozen=True)
@@ -305,19 +313,12 @@ def road_input(
             f"({duration_s:g} s at {rate_hz:g} Hz)"
         )
     time_s = np.arange(count) / rate_hz
-    distance_m = start_m + speed_m_s * time_s[:, None] - np.array(offsets)
-    height_m, slope, height_rate = _effective(profile, distance_m, radii_m, cams)
-    if not np.all(np.isfinite(slope)):
-        row, axle = np.argwhere(~np.isfinite(slope))[0]
-        wheel = f"rigid wheel of radius {radii_m[axle]:g} m" if cams is None else "tandem cam"
-        raise ValueError(
-            f"the {wheel} meets a wall at its equator at "
-            f"{distance_m[row, axle]:.6g} m (axle {names[axle]}): the profile has a step at "
-            "least one radius tall"
-        )
+    height_m, slope, height_rate = _effective_table(
+        profile, time_s, start_m, speed_m_s, offsets, radii_m, cams, names
+    )
     road_m = _interleave(-np.asarray(gains_m) * slope, height_m)
     rate_m_s = _interleave(np.zeros((count, n)), speed_m_s * height_rate)
-    for array in (time_s, road_m, rate_m_s, slope):
+    for array in (time_s, road_m, rate_m_s):
         array.setflags(write=False)
     return RoadInput(
         time_s=time_s,
@@ -359,6 +360,50 @@ def tyre_radii(tyre_radius_m: object, names: Sequence[str]) -> tuple[float, ...]
         as_number(r, f"tyre_radius_m[{i}] (axle {name})", "m", **limits)
         for i, (r, name) in enumerate(zip(radii, names, strict=True))
     )
+
+
+def _effective_table(
+    profile: RoadProfile,
+    time_s: np.ndarray,
+    start_m: float,
+    speed_m_s: float,
+    offsets: tuple[float, ...],
+    radii_m: tuple[float, ...],
+    cams: tuple[TandemCam, ...] | None,
+    names: tuple[str, ...],
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`_effective` at the axles' distances s_i(t) = s_0 + v t − d_i, read-only, kept for
+    the next drive of the same profile, grid and tyres (:data:`EFFECTIVE_ROADS_KEPT`): the
+    same numbers, computed once.
+
+    Raises
+    ------
+    ValueError
+        Where a tyre meets a wall at its equator (a step at least one radius tall).
+    """
+    digest = hashlib.sha256(profile.distance_m.tobytes() + profile.height_m.tobytes()).digest()
+    key = (digest, time_s.size, float(time_s[1]), start_m, speed_m_s, offsets, radii_m, cams)
+    kept = _EFFECTIVE_ROADS.get(key)
+    if kept is not None:
+        _EFFECTIVE_ROADS.move_to_end(key)
+        return kept
+    distance_m = start_m + speed_m_s * time_s[:, None] - np.array(offsets)
+    height_m, slope, height_rate = _effective(profile, distance_m, radii_m, cams)
+    if not np.all(np.isfinite(slope)):
+        row, axle = np.argwhere(~np.isfinite(slope))[0]
+        wheel = f"rigid wheel of radius {radii_m[axle]:g} m" if cams is None else "tandem cam"
+        raise ValueError(
+            f"the {wheel} meets a wall at its equator at "
+            f"{distance_m[row, axle]:.6g} m (axle {names[axle]}): the profile has a step at "
+            "least one radius tall"
+        )
+    kept = (height_m, slope, height_rate)
+    for array in kept:
+        array.setflags(write=False)
+    _EFFECTIVE_ROADS[key] = kept
+    while len(_EFFECTIVE_ROADS) > EFFECTIVE_ROADS_KEPT:
+        _EFFECTIVE_ROADS.popitem(last=False)
+    return kept
 
 
 def _effective(
