@@ -83,9 +83,9 @@ def _plant(load: str, machine: str, given: np.ndarray | PlantScenario | None) ->
     from loader_model.plant.scenario import PlantScenario, resolve_plant
 
     if isinstance(given, PlantScenario):
-        if given.machine != machine:
+        if given.layout.name != machine:
             raise ValueError(
-                f"params[{load!r}] is a plant of machine {given.machine!r}; allowed: plants of "
+                f"params[{load!r}] is a plant of machine {given.layout.name!r}; allowed: plants of "
                 f"machine {machine!r}"
             )
         return given

@@ -86,7 +86,7 @@ def fmu_functions(machine: str = DEFAULT_MACHINE) -> tuple[ca.Function, ca.Funct
     inputs = ca.SX.sym("in", len(layout.input_names) + len(layout.exogenous_names))
     xdot, y = plant_function(machine)(x, inputs[0], inputs[1:], full)
     ode = ca.Function("fmu_ode", [x, inputs, p], [xdot, y], ["x", "in", "p"], ["xdot", "y"])
-    x0 = equilibrium_function(machine)(full)[0]
+    x0 = equilibrium_function(layout)(full)[0]
     start = ca.Function("fmu_start", [p], [x0], ["p"], ["x0"])
     return ode, start
 

@@ -96,8 +96,8 @@ def reference_response(
     controller reads its sensors by name from that machine's outputs.
     """
     layout = plant_layout(machine)
-    plant = plant_function(machine)
-    x0, u0 = static_state(params, machine)
+    plant = plant_function(layout)
+    x0, u0 = static_state(params, layout)
     nominal = state_nominals(x0, params, machine)
     z = ca.SX.sym("z", x0.size)
     held = ca.SX.sym("w", len(layout.exogenous_names))
@@ -123,7 +123,7 @@ def reference_response(
         law = controller_function(controller)
 
         def sensors(y: np.ndarray) -> np.ndarray:
-            return sensor_signals(y, machine)
+            return sensor_signals(y, layout)
 
         y0 = np.asarray(plant(x0, u0, w[0], params)[1]).ravel()
         z_c = linear_controller(controller, settings, sensors(y0)).operating_state
