@@ -187,7 +187,7 @@ def run_sample(study: Study, gains: Gains, spec: SampleSpec) -> list[dict[str, A
     errors = sensor_errors(dict(spec.values))
     noise = sensor_model(dict(spec.values), spec.road_seed)
     try:
-        plant = sample_plant(spec, study.machine, study.params)
+        plant = sample_plant(spec, study.layout, study.params)
         road = course_input(_course(study, spec), plant)
         setup_error = None
     except Exception as error:  # a failed sample never stops the study
