@@ -164,7 +164,7 @@ def course_cost(
         The course's speed.
     params : dict, optional
         Plant parameter vector or resolved plant per load (default the machine's shipped one).
-    machine : PlantLayout, str or path
+    machine : PlantLayout, str or pathlib.Path
         The machine resolved (:func:`~loader_model.plant.layout.plant_layout`), or a name or
         description file resolved once here (default the skid-steer; module notes).
     duration_s : float, optional
@@ -228,7 +228,7 @@ def refine_on_course(
         Budget of cost evaluations (each drives every load once).
     progress : bool
         Show a progress bar.
-    machine : PlantLayout, str or path
+    machine : PlantLayout, str or pathlib.Path
         The machine resolved (:func:`~loader_model.plant.layout.plant_layout`), or a name or
         description file resolved once here (default the skid-steer; module notes).
     duration_s : float, optional

@@ -211,7 +211,7 @@ def export_plant_fmu(
         settings_vector_for_plant`); required with ``controller``.
     include_sources : bool
         Also put the C sources into ``sources/`` of the FMU (for inspection and rebuilding).
-    machine : PlantLayout, str or path
+    machine : PlantLayout, str or pathlib.Path
         The machine resolved (:func:`~loader_model.plant.layout.plant_layout`), or a machine of
         :func:`~loader_model.machines.list_machines` or its description file resolved once here
         (default the skid-steer); ``params`` is then in its plant layout's order

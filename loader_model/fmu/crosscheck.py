@@ -169,7 +169,7 @@ def cross_check(
     controller, settings
         For a closed-loop FMU: the controller and its settings vector it was built with; the
         pump command ``V_p_ref`` is then compared too.
-    machine : PlantLayout, str or path
+    machine : PlantLayout, str or pathlib.Path
         The FMU's machine: resolved (:func:`~loader_model.plant.layout.plant_layout`), or a name
         or description file resolved once here (default the skid-steer).
     """

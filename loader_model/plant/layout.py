@@ -177,7 +177,7 @@ def plant_layout(
 
     Parameters
     ----------
-    source : str or path
+    source : str or pathlib.Path
         A machine name or description file (:func:`loader_model.machines.machine`).
     circuit : str, optional
         ``"pump"`` or ``"valve"`` (default the description's ``[circuit] kind``).

@@ -199,7 +199,7 @@ def resolve_plant(
         Circuit switches; default: pump, valves, leakage and friction on, load-holding valves
         open, accumulator shut, occupant on (``PlantOptions.for_controller`` gives a
         controller's circuit).
-    machine : PlantLayout, str or path
+    machine : PlantLayout, str or pathlib.Path
         The machine: resolved (:func:`~loader_model.plant.layout.plant_layout`), or a name or
         description file resolved once here (default the skid-steer). For another machine,
         ``loader`` is its parameter file (a ``MachineParameters``, a path, or None for the

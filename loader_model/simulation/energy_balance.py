@@ -174,7 +174,7 @@ def reference_energy_balance(
         Period of the road's linear interpolation (the controller's), s.
     rtol, atol : float
         CVODES tolerances (as :func:`~loader_model.simulation.reference.reference_simulation`).
-    machine : PlantLayout, str or path
+    machine : PlantLayout, str or pathlib.Path
         The machine resolved (:func:`~loader_model.plant.layout.plant_layout`), or a name or
         description file resolved once here (default the skid-steer); ``params`` is its plant's.
 
@@ -226,7 +226,7 @@ def simulated_energy_balance(
         The road table it ran on.
     params : array_like
         Its plant parameter vector.
-    machine : PlantLayout, str or path
+    machine : PlantLayout, str or pathlib.Path
         The machine resolved (:func:`~loader_model.plant.layout.plant_layout`), or a name or
         description file resolved once here (default the skid-steer).
 

@@ -81,7 +81,7 @@ def reference_simulation(
         The controller's period, s.
     rtol, atol : float
         CVODES tolerances.
-    machine : PlantLayout, str or path
+    machine : PlantLayout, str or pathlib.Path
         The machine resolved (:func:`~loader_model.plant.layout.plant_layout`), or a name or
         description file resolved once here (default the skid-steer).
 

@@ -268,7 +268,7 @@ def resolve_scenario(
         Its settings (:func:`ride_scenario`).
     envelope : str
         ``"tandem-cam"`` (default) or ``"rigid"``: how the tyres envelop the road.
-    machine : PlantLayout, str or path
+    machine : PlantLayout, str or pathlib.Path
         The machine, resolved or a name or description file resolved once here (default the
         skid-steer; :func:`~loader_model.plant.scenario.resolve_plant`:
         for another machine ``loader`` is its parameter file, ``load`` its load case; the
