@@ -19,6 +19,7 @@ anything fails too, so the list only shrinks.
 from __future__ import annotations
 
 import ast
+import functools
 from pathlib import Path
 
 PACKAGE = Path(__file__).resolve().parents[2] / "loader_model"
@@ -128,6 +129,7 @@ def scan(source: str) -> list[tuple[str, int, str]]:
     return found
 
 
+@functools.cache
 def _violations() -> tuple[list[str], set[tuple[str, str]]]:
     problems, used = [], set()
     for path in sorted(PACKAGE.rglob("*.py")):
