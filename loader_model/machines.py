@@ -83,12 +83,17 @@ class Cylinder:
     rod: str
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class MachineInfo:
     """One generated machine: its package, the names of its signals and its structure.
 
     The names and orders come from the generated metadata (``COORDINATE_NAMES``, ...); the
-    structure (axles, cylinders, sensors, ranges) from the machine's description.
+    structure (axles, cylinders, sensors, ranges) from the machine's description. Two entries
+    are equal when they have the same name and description hash. An entry pickles as its source
+    (the shipped machine's name, or the description file of a machine outside the package) and
+    that hash: unpickling resolves it again through :func:`machine` (a worker process verifies
+    the machine's generated package in the runtime's cache) and refuses a description that
+    changed meanwhile.
     """
 
     name: str
@@ -145,6 +150,18 @@ class MachineInfo:
     """What feeds a valve circuit (``[circuit] supply``): ``"load_sensing"`` or
     ``"constant_pressure"``."""
 
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, MachineInfo):
+            return NotImplemented
+        return (self.name, self.description_hash) == (other.name, other.description_hash)
+
+    def __hash__(self) -> int:
+        return hash((self.name, self.description_hash))
+
+    def __reduce__(self) -> tuple[Any, tuple[str, str]]:
+        source = external_source(self.name)
+        return _unpickle, (self.name if source is None else str(source), self.description_hash)
+
     def coordinate_unit(self, name: str) -> str:
         """The unit of coordinate ``name``: m for a length (:attr:`length_coordinates`), else rad."""
         if name not in self.coordinate_names:
@@ -178,6 +195,17 @@ class MachineInfo:
     def function(self, name: str) -> Any:
         """The generated CasADi Function ``name`` (cached by the generated package)."""
         return self.generated().function(name)
+
+
+def _unpickle(source: str, expected_hash: str) -> MachineInfo:
+    """The machine of a pickled :class:`MachineInfo`, resolved again (class notes)."""
+    info = machine(source)
+    if info.description_hash != expected_hash:
+        raise ValueError(
+            f"machine {info.name!r} ({source}): its description changed since it was resolved "
+            f"(hash {info.description_hash}, resolved with {expected_hash})"
+        )
+    return info
 
 
 def _package_name(name: str) -> str:

@@ -81,7 +81,7 @@ def scaled_plant(plant: PlantScenario, parameter: str, factor: float) -> PlantSc
         raise ValueError(f"factor of {parameter} must be a finite number > 0; got {factor!r}")
     vector = plant.params.copy()
     vector[plant.layout.parameter_names.index(parameter)] *= factor
-    return PlantScenario.from_vector(vector, plant.loader, plant.load, plant.options, plant.machine)
+    return PlantScenario.from_vector(vector, plant.loader, plant.load, plant.options, plant.layout)
 
 
 def pump_sizing(

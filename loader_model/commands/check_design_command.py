@@ -94,10 +94,11 @@ def load_design(settings: str, controller: str, machine: str, params: str | None
     """The :class:`~loader_model.experiments.design_check.Design` of the command's arguments."""
     from loader_model.control.settings import default_settings, load_settings
     from loader_model.experiments.design_check import Design
-    from loader_model.machines import resolve_machine_name
+    from loader_model.plant.layout import plant_layout
 
     loaded = default_settings() if settings == "default" else load_settings(settings)
-    return Design(loaded, controller, resolve_machine_name(machine), params)
+    layout = plant_layout(machine)
+    return Design(loaded, controller, layout.name, params, layout=layout)
 
 
 def _check(args: argparse.Namespace, written: list[str]) -> int:

@@ -86,6 +86,15 @@ def machine_from_arguments(args: argparse.Namespace) -> Any:
     return machine(getattr(args, "machine", "skid_steer"))
 
 
+def layout_from_arguments(args: argparse.Namespace) -> Any:
+    """The machine of ``--machine`` resolved once: its
+    :class:`loader_model.plant.layout.PlantLayout` (ValueError if unknown), which the command
+    hands to everything below it."""
+    from loader_model.plant.layout import plant_layout
+
+    return plant_layout(getattr(args, "machine", "skid_steer"))
+
+
 def model_from_arguments(args: argparse.Namespace) -> Any:
     """Build the :class:`loader_model.vehicle.dynamics.LoaderDynamics` the arguments describe."""
     from loader_model.vehicle.dynamics import LoaderDynamics

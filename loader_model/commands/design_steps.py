@@ -69,7 +69,9 @@ def machine_step(args: argparse.Namespace, start, machine: str, envelope=None):
     import numpy as np
 
     from loader_model.experiments.machine_design import design_on_machine
+    from loader_model.plant.layout import plant_layout
 
+    layout = plant_layout(machine)
     if args.iterations < 1:
         raise ValueError(f"--iterations {args.iterations}: allowed: an integer >= 1")
     if args.start is not None:
@@ -90,7 +92,7 @@ def machine_step(args: argparse.Namespace, start, machine: str, envelope=None):
         )
         result = design_on_machine(
             start,
-            machine=machine,
+            layout=layout,
             params=args.params,
             margin=args.margin,
             max_iterations=args.iterations,
@@ -142,9 +144,10 @@ def _print_result(args: argparse.Namespace, start, result) -> None:
 
 def _run_check(args: argparse.Namespace, settings, machine: str, envelope):
     from loader_model.experiments.design_check import Design, check_design
+    from loader_model.plant.layout import plant_layout
 
     return check_design(
-        Design(settings, "skyhook", machine, args.params),
+        Design(settings, "skyhook", machine, args.params, layout=plant_layout(machine)),
         envelope,
         jobs=args.jobs,
         progress=not args.no_progress,

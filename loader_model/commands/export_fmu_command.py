@@ -17,9 +17,9 @@ from __future__ import annotations
 
 import argparse
 import time
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
-from loader_model.commands.common import add_model_arguments, machine_from_arguments
+from loader_model.commands.common import add_model_arguments, layout_from_arguments
 
 if TYPE_CHECKING:
     from loader_model.control.settings import ControllerSettings
@@ -72,14 +72,15 @@ def run(args: argparse.Namespace) -> int:
             f"--settings {args.settings}: --controller {args.controller} reads no settings "
             "(give --controller skyhook or virtual-accumulator)"
         )
-    info = machine_from_arguments(args)
+    layout = layout_from_arguments(args)
+    info = layout.machine
     if info.circuit != "pump":
         raise ValueError(
             f"--machine {args.machine}: its lift circuit is [circuit] kind = {info.circuit!r}; "
             "the FMU export supports kind 'pump' only (the paper's pump circuit)"
         )
     if not info.is_default:
-        return _run_machine(args, info.name)
+        return _run_machine(args, layout)
     from loader_model.plant.plant_parameters import plant_parameter_vector
     from loader_model.vehicle.statics import resolve_machine
 
@@ -116,13 +117,13 @@ def _settings(args: argparse.Namespace) -> ControllerSettings:
     return default_settings() if args.settings is None else load_settings(args.settings)
 
 
-def _run_machine(args: argparse.Namespace, machine: str) -> int:
+def _run_machine(args: argparse.Namespace, layout: Any) -> int:
     """The FMU of another described machine (its flat parameter file and load case)."""
     from loader_model.fmu.build import export_plant_fmu
     from loader_model.plant.scenario import resolve_plant
 
     controller = CONTROLLER_CHOICES[args.controller]
-    plant = resolve_plant(args.params, args.load, machine=machine)
+    plant = resolve_plant(args.params, args.load, machine=layout)
     settings = None
     if controller is not None:
         from loader_model.control.settings import settings_vector_for_plant
@@ -133,7 +134,7 @@ def _run_machine(args: argparse.Namespace, machine: str) -> int:
             plant.params,
             pressure_norm(plant.output("p_A")),
             hold_command=plant.u0,
-            machine=machine,
+            layout=layout,
         )
     started = time.perf_counter()
     path = export_plant_fmu(
@@ -142,13 +143,13 @@ def _run_machine(args: argparse.Namespace, machine: str) -> int:
         controller=controller,
         settings=settings,
         include_sources=not args.no_sources,
-        machine=machine,
+        machine=layout,
     )
     seconds = time.perf_counter() - started
     size_kb = path.stat().st_size / 1024
     what = "plant" if controller is None else f"plant + {args.controller} controller"
     print(
-        f"wrote {path}: {machine} {what}, FMI 2.0 Model Exchange, linux64, {size_kb:.0f} kB, "
+        f"wrote {path}: {layout.name} {what}, FMI 2.0 Model Exchange, linux64, {size_kb:.0f} kB, "
         f"built in {seconds:.1f} s"
     )
     return 0

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import argparse
 
-from loader_model.commands.common import add_model_arguments, machine_from_arguments
+from loader_model.commands.common import add_model_arguments, layout_from_arguments
 
 HELP = "hydraulic plant: static pressures, k_eq, coupled modes, pressure loop vs Eq. 43"
 GUIDE = "hydraulics.md"  # its page of the user guide (docs/guide/)
@@ -40,10 +40,9 @@ def run(args: argparse.Namespace) -> int:
     check_output_path(args.plot, (".png",), "plot file")  # before any work
     if not args.highpass > 0:
         raise ValueError(f"--highpass {args.highpass!r}: allowed: a number > 0 (rad/s)")
-    info = machine_from_arguments(args)
-    report = hydraulics_report(
-        args.params, args.load, highpass_rad_s=args.highpass, machine=info.name
-    )
+    layout = layout_from_arguments(args)
+    info = layout.machine
+    report = hydraulics_report(args.params, args.load, highpass_rad_s=args.highpass, machine=layout)
     static = report.static_outputs
     name = "" if info.is_default else f"{info.title}: "
     print(f"{name}Hydraulic plant, bucket load {args.load}")

@@ -43,7 +43,7 @@ def _run_machine(args: argparse.Namespace, info) -> int:
     from loader_model.modal.undamped import machine_undamped_matrices
 
     matrices = machine_undamped_matrices(
-        info.name, args.params, args.load, gravity_stiffness=not args.no_gravity
+        info, args.params, args.load, gravity_stiffness=not args.no_gravity
     )
     result = modal_analysis(matrices.mass, matrices.stiffness)
     title = f"{info.title} ({args.params or 'shipped values'}), bucket load {args.load}"

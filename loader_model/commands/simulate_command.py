@@ -21,12 +21,12 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from loader_model.commands.common import (
     OutsideValidityError,
     add_model_arguments,
-    machine_from_arguments,
+    layout_from_arguments,
 )
 from loader_model.commands.course_options import (
     add_course_arguments,
@@ -144,19 +144,20 @@ def run(args: argparse.Namespace) -> int:
 
         settings_file = load_settings(args.controller)
     law = "skyhook" if settings_file is not None else args.controller
-    machine = machine_from_arguments(args).name
+    layout = layout_from_arguments(args)
+    machine = layout.name
     course = course_from_arguments(args)
     if args.duration is None:
         check_drive(course, args.speed)
     if args.compare:
-        return _compare(args, machine, course, settings_file)
+        return _compare(args, layout, course, settings_file)
     scenario = resolve_scenario(
         args.params,
         args.load,
         controller=law,
         settings=settings_file,
         envelope=args.envelope,
-        machine=machine,
+        machine=layout,
     )
     title = f"{course.name}; {args.controller} controller, load {args.load}, {args.envelope} tyres"
     if machine != "skid_steer":
@@ -183,19 +184,19 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _compare(args: argparse.Namespace, machine: str, course: object, settings: object) -> int:
+def _compare(args: argparse.Namespace, layout: Any, course: object, settings: object) -> int:
     """Print the four controllers' a_total over the course (``--compare``). Returns 0."""
     from loader_model.simulation.machine_comparison import compare_controllers, format_comparison
 
     rows = compare_controllers(
-        machine,
+        layout,
         args.params,
         args.load,
         course=course,
         settings=settings,
         substeps=args.substeps,
     )
-    title = f"{machine}: {getattr(course, 'name', '')}; load {args.load}"
+    title = f"{layout.name}: {getattr(course, 'name', '')}; load {args.load}"
     print(format_comparison(rows, title))
     return 0
 

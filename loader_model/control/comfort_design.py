@@ -97,14 +97,12 @@ def comfort_plants(
     """Balanced :class:`DesignPlant` per load with the V_p and p_A r.m.s. limits (3 σ rule);
     ``params``: plant parameter vector or resolved plant per load
     (:func:`~loader_model.control.comfort_plant.comfort_case`), default the shipped loader's."""
-    from loader_model.plant.layout import plant_layout
-
     plants = []
     for load in loads:
         case = comfort_case(load, None if params is None else params.get(load))
         system = comfort_system(case, road_class, speed_kmh / 3.6)
-        names = plant_layout(case.machine).parameter_names
-        v_max = float(case.params[names.index(plant_layout(case.machine).command_limit)])
+        names = case.layout.parameter_names
+        v_max = float(case.params[names.index(case.layout.command_limit)])
         p_norm = case.pressure_norm
         plant = DesignPlant.from_statespace(
             system,

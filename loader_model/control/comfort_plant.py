@@ -39,6 +39,7 @@ from loader_model.control.settings import (
 )
 
 if TYPE_CHECKING:
+    from loader_model.plant.layout import PlantLayout
     from loader_model.plant.scenario import PlantScenario
 
 __all__ = [
@@ -78,13 +79,14 @@ class ComfortCase:
     plant: Any
     settings: np.ndarray
     sensors: np.ndarray
-    machine: str = "skid_steer"
+    layout: PlantLayout
+    """The machine of the plant (its :attr:`~loader_model.plant.scenario.PlantScenario.layout`)."""
     pressure_norm: float = 0.0
     """‖p_A‖∞ of the controller's normalisation, Pa (the paper's norm of the bucket load for the
     skid-steer; :func:`~loader_model.plant.machine_parameters.pressure_norm` otherwise)."""
 
 
-_CASES: dict[tuple[str, tuple[float, ...] | None, str], ComfortCase] = {}
+_CASES: dict[tuple[str, tuple[float, ...] | None, PlantLayout | None], ComfortCase] = {}
 
 
 def _pressure_norm(load: str, plant: PlantScenario) -> float:
@@ -105,12 +107,12 @@ def _case(load: str, plant: PlantScenario) -> ComfortCase:
     params = np.array(plant.params)
     norm = _pressure_norm(load, plant)
     settings = settings_vector_for_plant(
-        default_settings(), params, norm, hold_command=plant.u0, machine=plant.machine
+        default_settings(), params, norm, hold_command=plant.u0, layout=plant.layout
     )
-    linear = linearise_plant(params, np.array(plant.x0), plant.u0, machine=plant.machine)
+    linear = linearise_plant(params, np.array(plant.x0), plant.u0, machine=plant.layout)
     system = linear.state_space(name=f"plant_{load}")
-    sensors = sensor_signals(np.array(plant.y0), plant.machine)
-    return ComfortCase(load, params, system, settings, sensors, plant.machine, norm)
+    sensors = sensor_signals(np.array(plant.y0), plant.layout)
+    return ComfortCase(load, params, system, settings, sensors, plant.layout, norm)
 
 
 def comfort_case(load: str, params: np.ndarray | PlantScenario | None = None) -> ComfortCase:
@@ -123,7 +125,7 @@ def comfort_case(load: str, params: np.ndarray | PlantScenario | None = None) ->
         raise ValueError(f"load must be 'empty' or 'full'; got {load!r}")
     plant = params if isinstance(params, PlantScenario) else None
     vector = None if params is None else np.asarray(params if plant is None else plant.params)
-    machine = "skid_steer" if plant is None else plant.machine
+    machine = None if plant is None else plant.layout
     key = (load, None if vector is None else tuple(float(v) for v in vector.ravel()), machine)
     if key not in _CASES:
         if plant is None:
@@ -217,9 +219,7 @@ def comfort_system(
     """
     import control
 
-    from loader_model.plant.layout import plant_layout
-
-    layout = plant_layout(case.machine)
+    layout = case.layout
     named = dict(zip(layout.parameter_names, case.params, strict=True))
     first, last = layout.machine.axles[0], layout.machine.axles[-1]
     wheelbase = float(named[f"{first}_x"] - named[f"{last}_x"])

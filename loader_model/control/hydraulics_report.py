@@ -17,6 +17,7 @@ from loader_model.control.pressure_loop import (
     pressure_loop,
 )
 from loader_model.machines import DEFAULT_MACHINE
+from loader_model.plant.layout import SKID_STEER, PlantLayout
 from loader_model.plant.linear import linearise_plant, undamped_matrices_from_plant
 from loader_model.plant.plant_parameters import PlantOptions
 from loader_model.plant.scenario import PlantScenario, resolve_plant
@@ -50,13 +51,13 @@ class HydraulicsReport:
     loops: dict[str, Any]
     comparisons: dict[str, PressureLoopComparison]
     machine: str = DEFAULT_MACHINE
-    """The machine (:func:`loader_model.machines.list_machines`)."""
+    """The machine's name (:func:`loader_model.machines.list_machines`)."""
     cylinder_count: int = 2
     """Lift cylinders in parallel (``n_cyl``; the static force is theirs together)."""
 
 
 def _modes(plant: PlantScenario) -> list[tuple[float, float]]:
-    linear = linearise_plant(plant.params, plant.x0, plant.u0, machine=plant.machine)
+    linear = linearise_plant(plant.params, plant.x0, plant.u0, machine=plant.layout)
     poles = np.linalg.eigvals(linear.state_space().A)
     out = [
         (abs(s) / (2 * np.pi), -s.real / abs(s))
@@ -86,7 +87,7 @@ def hydraulics_report(
     load: Any,
     *,
     highpass_rad_s: float = 1.0,
-    machine: str = DEFAULT_MACHINE,
+    machine: PlantLayout = SKID_STEER,
 ) -> HydraulicsReport:
     """Static pressures, k_eq, modes per setting and the pressure loop of ``loader``.
 
@@ -98,16 +99,17 @@ def hydraulics_report(
         the skid-steer its parameter file and a load case of it.
     highpass_rad_s : float
         Corner of the high-pass on the measured p_A in the pressure loop [rad/s].
-    machine : str
-        A machine name or description file (default the skid-steer of the paper).
+    machine : PlantLayout
+        The machine resolved (:func:`~loader_model.plant.layout.plant_layout`; default the
+        skid-steer of the paper).
     """
     plant = resolve_plant(loader, load, PlantOptions(), machine=machine)
     static = dict(zip(plant.layout.output_names, plant.y0.tolist(), strict=True))
     static["V_p_hold"] = plant.u0
     closed = plant.with_options(PlantOptions.closed())
-    _, _, k_eq = undamped_matrices_from_plant(closed.params, machine=plant.machine)
+    _, _, k_eq = undamped_matrices_from_plant(closed.params, machine=plant.layout)
     modes = {name: _modes(plant.with_options(options)) for name, options in SETTINGS.items()}
-    linear = linearise_plant(plant.params, plant.x0, plant.u0, machine=plant.machine)
+    linear = linearise_plant(plant.params, plant.x0, plant.u0, machine=plant.layout)
     state_space = linear.state_space()
     norm, max_displacement, k_p = _loop_scales(plant)
     loops = {
@@ -119,7 +121,7 @@ def hydraulics_report(
     }
     comparisons = {name: compare_with_equation_43(loop) for name, loop in loops.items()}
     count = round(plant.parameter("n_cyl"))
-    return HydraulicsReport(static, k_eq, modes, loops, comparisons, plant.machine, count)
+    return HydraulicsReport(static, k_eq, modes, loops, comparisons, plant.layout.name, count)
 
 
 def plot_pressure_loop(report: HydraulicsReport, path: Path, title: str) -> None:

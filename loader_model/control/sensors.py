@@ -23,9 +23,12 @@ with H the origin, neglecting the centripetal term (second order in θ̇1).
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from loader_model.plant.layout import PlantLayout
 
 __all__ = ["SENSOR_NAMES", "SensorModel", "pitch_acceleration", "quantise", "sensor_signals"]
 
@@ -51,16 +54,15 @@ def quantise(value: Any, step: Any) -> Any:
     return np.where(step > 0, safe * np.floor(np.asarray(value) / safe + 0.5), value)
 
 
-def sensor_signals(y: np.ndarray, machine: str | None = None) -> np.ndarray:
+def sensor_signals(y: np.ndarray, layout: PlantLayout | None = None) -> np.ndarray:
     """The ideal sensor readings (order :data:`SENSOR_NAMES`) from plant outputs ``y``.
 
     ``y`` has the plant outputs along its last axis (one sample or a time series), those of
-    ``machine``'s plant (default the skid-steer's).
+    the machine ``layout``'s plant (default the skid-steer's).
     """
-    from loader_model.machines import DEFAULT_MACHINE
-    from loader_model.plant.layout import plant_layout
+    from loader_model.plant.layout import SKID_STEER
 
-    names = plant_layout(machine or DEFAULT_MACHINE).output_names
+    names = (layout or SKID_STEER).output_names
     y = np.asarray(y, dtype=float)
     if y.shape[-1] != len(names):
         raise ValueError(f"y has {y.shape[-1]} outputs on its last axis; expected {len(names)}")

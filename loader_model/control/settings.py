@@ -23,6 +23,7 @@ import tomllib
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -30,6 +31,9 @@ from loader_model.io.files import read_text
 from loader_model.parameters.checks import check_ranges
 from loader_model.parameters.fields import Range, Sourced, si, sources_field
 from loader_model.parameters.toml_format import build, dumps, to_raw
+
+if TYPE_CHECKING:
+    from loader_model.plant.layout import PlantLayout
 
 __all__ = [
     "SETTINGS_NAMES",
@@ -296,7 +300,7 @@ def settings_vector_for_plant(
     pressure_norm: float,
     *,
     hold_command: float | None = None,
-    machine: str | None = None,
+    layout: PlantLayout | None = None,
 ) -> np.ndarray:
     """:func:`settings_vector` with the command limit (V_p,max, or a valve's spool stroke
     x_s,max), g and N_x from the plant parameter vector ``params``
@@ -304,16 +308,14 @@ def settings_vector_for_plant(
 
     ``hold_command``: the equilibrium's u0 when the caller has it
     (:class:`~loader_model.plant.scenario.PlantScenario`); default: computed from ``params``.
-    ``machine``: the plant's machine (default the skid-steer)."""
-    from loader_model.machines import DEFAULT_MACHINE
+    ``layout``: the plant's machine (default the skid-steer)."""
     from loader_model.plant.equilibrium import static_state
-    from loader_model.plant.layout import plant_layout
+    from loader_model.plant.layout import SKID_STEER
 
-    machine = machine or DEFAULT_MACHINE
-    layout = plant_layout(machine)
+    layout = layout or SKID_STEER
     names = layout.parameter_names
     named = dict(zip(names, np.asarray(params, dtype=float), strict=True))
-    hold = static_state(params, machine)[1] if hold_command is None else float(hold_command)
+    hold = static_state(params, layout)[1] if hold_command is None else float(hold_command)
     return settings_vector(
         settings,
         pressure_norm=pressure_norm,

@@ -36,7 +36,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
+from loader_model.plant.layout import SKID_STEER, MachineSource, PlantLayout, resolve_layout
 
 if TYPE_CHECKING:
     from loader_model.control.settings import ControllerSettings
@@ -49,56 +49,59 @@ __all__ = ["course_cost", "refine_on_course"]
 #: The name the refined gains' settings carry while they are driven.
 _SOURCE = "skyhook-optimised"
 #: Another machine's shipped plant per (machine, load), resolved once per process.
-_SHIPPED: dict[tuple[str, str], PlantScenario] = {}
+_SHIPPED: dict[tuple[PlantLayout, str], PlantScenario] = {}
 
 
-def _settings(k_fb: np.ndarray, machine: str) -> ControllerSettings:
+def _settings(k_fb: np.ndarray, layout: PlantLayout) -> ControllerSettings:
     """The shipped settings with gains ``k_fb``: as given for the skid-steer, with the norms
     scaled for another machine (module notes); ValueError outside their validated ranges."""
     from loader_model.control.settings import default_settings, with_gains, with_scaled_gains
 
-    if machine == DEFAULT_MACHINE:
+    if layout.machine.is_default:
         return with_gains(default_settings(), k_fb, _SOURCE)
     return with_scaled_gains(default_settings(), k_fb, _SOURCE)
 
 
-def _admissible(k_fb: np.ndarray, machine: str) -> bool:
-    """True when ``k_fb`` is within the range the settings of ``machine`` can carry."""
+def _admissible(k_fb: np.ndarray, layout: PlantLayout) -> bool:
+    """True when ``k_fb`` is within the range the settings of the machine ``layout`` can
+    carry."""
     from loader_model.control.settings import ControllerSettings
 
-    if machine == DEFAULT_MACHINE:  # the settings file's range, ±100
+    if layout.machine.is_default:  # the settings file's range, ±100
         allowed = ControllerSettings.__dataclass_fields__["k_fb"].metadata["allowed"]
         return not (np.any(k_fb < allowed.low) or np.any(k_fb > allowed.high))
     try:
-        _settings(k_fb, machine)
+        _settings(k_fb, layout)
     except ValueError:
         return False
     return True
 
 
-def _plant(load: str, machine: str, given: np.ndarray | PlantScenario | None) -> PlantScenario:
+def _plant(
+    load: str, layout: PlantLayout, given: np.ndarray | PlantScenario | None
+) -> PlantScenario:
     """The plant ``load`` is driven on: ``given`` (a resolved plant or a parameter vector of
-    ``machine``) or the shipped one on the skyhook's circuit."""
+    the machine ``layout``) or the shipped one on the skyhook's circuit."""
     from loader_model.plant.plant_parameters import PlantOptions
     from loader_model.plant.scenario import PlantScenario, resolve_plant
 
     if isinstance(given, PlantScenario):
-        if given.machine != machine:
+        if given.layout.machine != layout.machine:
             raise ValueError(
-                f"params[{load!r}] is a plant of machine {given.machine!r}; allowed: plants of "
-                f"machine {machine!r}"
+                f"params[{load!r}] is a plant of machine {given.layout.name!r}; allowed: plants of "
+                f"machine {layout.name!r}"
             )
         return given
     if given is not None:
-        return PlantScenario.from_vector(np.asarray(given, dtype=float), machine=machine)
-    if machine == DEFAULT_MACHINE:
+        return PlantScenario.from_vector(np.asarray(given, dtype=float), machine=layout)
+    if layout.machine.is_default:
         from loader_model.experiments.trials import plant_scenario
 
         return plant_scenario(load, _SOURCE)
-    if (machine, load) not in _SHIPPED:
+    if (layout, load) not in _SHIPPED:
         options = PlantOptions.for_controller("skyhook")
-        _SHIPPED[machine, load] = resolve_plant(None, load, options, machine=machine)
-    return _SHIPPED[machine, load]
+        _SHIPPED[layout, load] = resolve_plant(None, load, options, machine=layout)
+    return _SHIPPED[layout, load]
 
 
 def _drive(
@@ -106,7 +109,7 @@ def _drive(
     load: str,
     speed_kmh: float,
     params: np.ndarray | PlantScenario | None,
-    machine: str = DEFAULT_MACHINE,
+    layout: PlantLayout = SKID_STEER,
     duration_s: float | None = None,
     course: Course | None = None,
 ) -> float:
@@ -114,30 +117,28 @@ def _drive(
     from loader_model.simulation.scenario import ride_scenario
     from loader_model.simulation.simulator import course_input, simulate
 
-    plant = _plant(load, machine, params)
+    plant = _plant(load, layout, params)
     norm = None  # another machine's: its plant's (ride_scenario)
-    if machine == DEFAULT_MACHINE:
+    if layout.machine.is_default:
         from loader_model.parameters.sets import bucket_load
 
         norm = bucket_load(load).pressure_normalisation
-    scenario = ride_scenario(plant, "skyhook", _settings(k_fb, machine), pressure_norm_pa=norm)
+    scenario = ride_scenario(plant, "skyhook", _settings(k_fb, layout), pressure_norm_pa=norm)
     driven = paper_course(speed_kmh) if course is None else course
     result = simulate(course_input(driven, scenario), scenario, duration_s=duration_s)
     return float(result.seat_evaluation().total_m_s2)
 
 
 def _machine_params(
-    machine: str | None,
+    layout: PlantLayout,
     loads: Sequence[str],
     params: dict[str, np.ndarray | PlantScenario] | None,
-) -> tuple[str, dict[str, np.ndarray | PlantScenario] | None]:
-    """The machine's name, and for another machine than the skid-steer a plant per load
-    (``params`` as given, else its shipped plants), so that the linear checks and the drives
-    share them."""
-    name = resolve_machine_name(DEFAULT_MACHINE if machine is None else machine)
-    if name == DEFAULT_MACHINE or params is not None:
-        return name, params
-    return name, {load: _plant(load, name, None) for load in loads}
+) -> dict[str, np.ndarray | PlantScenario] | None:
+    """For another machine than the skid-steer a plant per load (``params`` as given, else its
+    shipped plants), so that the linear checks and the drives share them."""
+    if layout.machine.is_default or params is not None:
+        return params
+    return {load: _plant(load, layout, None) for load in loads}
 
 
 def course_cost(
@@ -146,7 +147,7 @@ def course_cost(
     speed_kmh: float = 9.0,
     params: dict[str, np.ndarray | PlantScenario] | None = None,
     *,
-    machine: str = DEFAULT_MACHINE,
+    machine: MachineSource = SKID_STEER,
     duration_s: float | None = None,
     course: Course | None = None,
 ) -> dict[str, float]:
@@ -163,8 +164,9 @@ def course_cost(
         The course's speed.
     params : dict, optional
         Plant parameter vector or resolved plant per load (default the machine's shipped one).
-    machine : str
-        A machine name or description file (default the skid-steer; module notes).
+    machine : PlantLayout, str or pathlib.Path
+        The machine resolved (:func:`~loader_model.plant.layout.plant_layout`), or a name or
+        description file resolved once here (default the skid-steer; module notes).
     duration_s : float, optional
         Drive only the course's first ``duration_s`` seconds (default the whole course).
     course : Course, optional
@@ -178,14 +180,15 @@ def course_cost(
         For gains the machine's settings cannot carry, or a plant of another machine.
     """
     gain = np.asarray(k_fb, dtype=float).ravel()
-    name, params = _machine_params(machine, loads, params)
+    layout = resolve_layout(machine)
+    params = _machine_params(layout, loads, params)
     return {
         load: _drive(
             gain,
             load,
             speed_kmh,
             None if params is None else params[load],
-            name,
+            layout,
             duration_s,
             course,
         )
@@ -202,7 +205,7 @@ def refine_on_course(
     params: dict[str, np.ndarray | PlantScenario] | None = None,
     max_evaluations: int = 120,
     progress: bool = True,
-    machine: str = DEFAULT_MACHINE,
+    machine: MachineSource = SKID_STEER,
     duration_s: float | None = None,
     course: Course | None = None,
 ) -> dict[str, Any]:
@@ -225,8 +228,9 @@ def refine_on_course(
         Budget of cost evaluations (each drives every load once).
     progress : bool
         Show a progress bar.
-    machine : str
-        A machine name or description file (default the skid-steer; module notes).
+    machine : PlantLayout, str or pathlib.Path
+        The machine resolved (:func:`~loader_model.plant.layout.plant_layout`), or a name or
+        description file resolved once here (default the skid-steer; module notes).
     duration_s : float, optional
         Drive only the course's first ``duration_s`` seconds (default the whole course).
 
@@ -254,7 +258,8 @@ def refine_on_course(
     sigma = DEFAULT_MARGIN if margin is None else float(margin)
     if isinstance(max_evaluations, bool) or int(max_evaluations) < 1:
         raise ValueError(f"max_evaluations must be an integer >= 1; got {max_evaluations!r}")
-    name, params = _machine_params(machine, loads, params)
+    layout = resolve_layout(machine)
+    params = _machine_params(layout, loads, params)
     plants = comfort_plants(tuple(loads), params=params)
     start = np.asarray(gain0, dtype=float).ravel()
     if start.size != 4:
@@ -269,7 +274,7 @@ def refine_on_course(
         if key in seen:
             return seen[key][0]
         bar.update(1)
-        if not _admissible(k, name):  # the range the machine's settings can carry
+        if not _admissible(k, layout):  # the range the machine's settings can carry
             refused += 1
             seen[key] = (np.inf, {})
             return np.inf
@@ -279,7 +284,7 @@ def refine_on_course(
             return np.inf
         try:
             totals = course_cost(
-                k, loads, speed_kmh, params, machine=name, duration_s=duration_s, course=course
+                k, loads, speed_kmh, params, machine=layout, duration_s=duration_s, course=course
             )
         except SimulationError:
             refused += 1
@@ -294,7 +299,7 @@ def refine_on_course(
         if not np.isfinite(start_cost):
             raise ValueError(
                 f"gain0 {start.tolist()} misses the stability margin {sigma} rad/s, fails "
-                f"on the course or leaves the range of machine {name!r}'s settings; start from "
+                f"on the course or leaves the range of machine {layout.name!r}'s settings; start from "
                 "a stable design (loader-model design)"
             )
         simplex = np.vstack([start, start + np.diag(0.1 * np.maximum(np.abs(start), 1.0))])

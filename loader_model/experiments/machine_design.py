@@ -56,6 +56,7 @@ from loader_model.experiments.design_check.runs import (
 )
 from loader_model.experiments.design_check.verdict import MARGIN_RTOL
 from loader_model.experiments.stable_start import nearest_stable_gain
+from loader_model.plant.layout import SKID_STEER, PlantLayout
 
 __all__ = [
     "START_MARGIN_FACTOR",
@@ -122,10 +123,10 @@ class MachineDesign:
     wall_s: float
 
 
-def _settings(gain: np.ndarray, machine: str) -> Any:
+def _settings(gain: np.ndarray, layout: PlantLayout) -> Any:
     from loader_model.control.settings import default_settings, with_gains, with_scaled_gains
 
-    scaled = with_gains if machine == "skid_steer" else with_scaled_gains
+    scaled = with_gains if layout.machine.is_default else with_scaled_gains
     return scaled(default_settings(), gain, "loader-model design --method machine")
 
 
@@ -151,7 +152,7 @@ class _Problem:
 
     def __init__(
         self,
-        machine: str,
+        layout: PlantLayout,
         params: str | None,
         envelope: Envelope,
         margin: float,
@@ -162,18 +163,21 @@ class _Problem:
         from loader_model.control.comfort_design import comfort_plants
         from loader_model.experiments.design_check.margins import sampled_plants
 
-        self.machine, self.params, self.envelope, self.margin = machine, params, envelope, margin
+        self.layout, self.params, self.envelope, self.margin = layout, params, envelope, margin
         self.conditions = list(envelope.conditions())
         self.conditions += [c for c in extra_conditions if c not in self.conditions]
-        probe = Design(_settings(np.zeros(4), machine), "skyhook", machine, params)
+        probe = self._design(_settings(np.zeros(4), layout))
         self.baseline = _baselines(probe, envelope, self.conditions)
         nominal = None
-        if machine != "skid_steer" or params is not None:
+        if not layout.machine.is_default or params is not None:
             nominal = {load: condition_plant(probe, load, "skyhook") for load in envelope.loads}
         self.plants = comfort_plants(envelope.loads, params=nominal)
         self.sampled = sampled_plants(probe, sampled, study)
         self.simulations = 0
         self.start_ratio: list[float] | None = None
+
+    def _design(self, settings: Any) -> Design:
+        return Design(settings, "skyhook", self.layout.name, self.params, layout=self.layout)
 
     def evaluate(self, gain: np.ndarray) -> tuple[float, np.ndarray, list[float]] | str:
         """(J, ∂J/∂K, a_total per scenario), or the reason a constraint rejects ``gain``."""
@@ -187,7 +191,7 @@ class _Problem:
         from loader_model.simulation.validity_check import SimulationError
 
         try:
-            settings = _settings(gain, self.machine)
+            settings = _settings(gain, self.layout)
         except ValueError as error:  # outside the settings' range
             return f"outside the settings' range: {error}"
         worst = min(e.loop_margin for e in evaluate_gain(self.plants, gain.reshape(1, 4)))
@@ -197,7 +201,7 @@ class _Problem:
             sampled = min(e.loop_margin for e in evaluate_gain(self.sampled, gain.reshape(1, 4)))
             if sampled < self.margin:  # the check asks > 0: σ keeps the design off its edge
                 return f"loop margin {sampled:.3f} rad/s on a sampled plant, below {self.margin:g}"
-        design = Design(settings, "skyhook", self.machine, self.params)
+        design = self._design(settings)
         factors = gain_norm_factors(settings)  # ∂a/∂K = c ∂a/∂k_settings (same control law)
         ratios, gradient, totals = [], np.zeros(4), []
         for index, condition in enumerate(self.conditions):
@@ -251,7 +255,7 @@ def _stable_start(given: np.ndarray, plants: list[Any], margin: float) -> np.nda
 def design_on_machine(
     start_gain: Any,
     *,
-    machine: str = "skid_steer",
+    layout: PlantLayout = SKID_STEER,
     params: str | None = None,
     envelope: Envelope = TRAINING_ENVELOPE,
     margin: float = 0.1,
@@ -270,8 +274,11 @@ def design_on_machine(
         moved first to the nearest gain whose loop keeps ``margin`` on each load's linearised
         plant and on every sampled plant when it does not, then scaled toward zero while its
         runs break the other constraints (persistence, pump limits).
-    machine, params : str
-        The machine and its parameter file (default the skid-steer's shipped values).
+    layout : PlantLayout
+        The machine resolved (:func:`~loader_model.plant.layout.plant_layout`; default the
+        skid-steer).
+    params : str
+        Its parameter file (default the machine's shipped values).
     envelope : Envelope
         The scenarios and the criteria (default :data:`TRAINING_ENVELOPE`).
     margin : float
@@ -305,7 +312,7 @@ def design_on_machine(
         raise ValueError(f"max_iterations = {max_iterations!r}; allowed: an integer >= 1")
     start_wall = time.perf_counter()
     problem = _Problem(
-        machine, params, envelope, float(margin), sampled_plants, study, extra_conditions
+        layout, params, envelope, float(margin), sampled_plants, study, extra_conditions
     )
     given = np.asarray(start_gain, dtype=float).ravel()
     if given.size != 4 or not np.all(np.isfinite(given)):
@@ -321,7 +328,7 @@ def design_on_machine(
         first = problem.evaluate(gain)
     if isinstance(first, str):
         raise ValueError(
-            f"start_gain {given.tolist()} breaks a constraint on machine {machine!r}, also "
+            f"start_gain {given.tolist()} breaks a constraint on machine {layout.name!r}, also "
             f"scaled by {START_SHRINK:g} {START_SHRINKS} times: {first}; start from a design "
             "that meets it"
         )

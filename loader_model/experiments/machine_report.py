@@ -24,22 +24,25 @@ SECOND_MACHINE = "compact_wheel_loader"
 
 
 def machine_rows(machine: str = SECOND_MACHINE, speed_kmh: float = 9.0) -> dict[str, Rows]:
-    """Modes, designed gains and the course comparison of ``machine`` (module notes)."""
+    """Modes, designed gains and the course comparison of ``machine`` (module notes), resolved
+    once here."""
     from loader_model.control.comfort_design import comfort_plants
     from loader_model.control.gain_design import design_gains
     from loader_model.control.settings import default_settings, with_scaled_gains
     from loader_model.modal.modes import modal_analysis
     from loader_model.modal.undamped import machine_undamped_matrices
+    from loader_model.plant.layout import plant_layout
     from loader_model.plant.scenario import resolve_plant
     from loader_model.simulation.machine_comparison import compare_controllers
 
+    layout = plant_layout(machine)
     loads = ("empty", "full")
     modes: Rows = [["load", "undamped modes [Hz]"]]
     for load in loads:
-        matrices = machine_undamped_matrices(machine, None, load)
+        matrices = machine_undamped_matrices(layout.machine, None, load)
         result = modal_analysis(matrices.mass, matrices.stiffness)
         modes.append([load, ", ".join(f"{f:.2f}" for f in np.sort(result.frequencies_hz))])
-    params = {load: resolve_plant(None, load, machine=machine) for load in loads}
+    params = {load: resolve_plant(None, load, machine=layout) for load in loads}
     design = design_gains(comfort_plants(loads, "C", speed_kmh, params), "optimise")
     gain = np.asarray(design.gain, dtype=float).ravel()
     gains: Rows = [
@@ -49,8 +52,8 @@ def machine_rows(machine: str = SECOND_MACHINE, speed_kmh: float = 9.0) -> dict[
     settings = with_scaled_gains(default_settings(), gain, "report: comfort-optimised")
     comparison: Rows = [["controller", *(f"{load} a_total [m/s²] (Δ)" for load in loads)]]
     runs = {
-        load: compare_controllers(machine, None, load, speed_kmh=speed_kmh)
-        + compare_controllers(machine, None, load, speed_kmh=speed_kmh, settings=settings)[-1:]
+        load: compare_controllers(layout, None, load, speed_kmh=speed_kmh)
+        + compare_controllers(layout, None, load, speed_kmh=speed_kmh, settings=settings)[-1:]
         for load in loads
     }
     for index, row in enumerate(runs["empty"]):

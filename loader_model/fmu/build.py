@@ -30,10 +30,13 @@ from loader_model.fmu.closed_loop import closed_loop_functions, closed_loop_vari
 from loader_model.fmu.model_description import MODEL_IDENTIFIER, model_description_xml
 from loader_model.fmu.variables import fmu_parameter_names, fmu_variables
 from loader_model.io.export import check_output_path, write_atomically
-from loader_model.machines import DEFAULT_MACHINE
-from loader_model.machines import machine as machine_info
 from loader_model.plant.equilibrium import equilibrium_function, static_state
-from loader_model.plant.layout import plant_layout
+from loader_model.plant.layout import (
+    SKID_STEER,
+    MachineSource,
+    PlantLayout,
+    resolve_layout,
+)
 from loader_model.plant.plant import plant_function
 
 __all__ = ["export_plant_fmu", "find_compiler", "fmu_functions"]
@@ -70,23 +73,22 @@ def _platform_folder() -> str:
     )
 
 
-def fmu_functions(machine: str = DEFAULT_MACHINE) -> tuple[ca.Function, ca.Function]:
+def fmu_functions(layout: PlantLayout = SKID_STEER) -> tuple[ca.Function, ca.Function]:
     """``fmu_ode(x, in, p) -> (xdot, y)`` and ``fmu_start(p) -> x0`` over the FMU's parameters.
 
     ``in`` is (V_p_ref, w); ``p`` is ordered as :func:`~loader_model.fmu.variables.
-    fmu_parameter_names` of ``machine`` (default the skid-steer; the parameters the plant
+    fmu_parameter_names` of the machine ``layout`` (default the skid-steer; the parameters the plant
     completes, its static tyre loads and preloads, are fixed at 0).
     """
-    layout = plant_layout(machine_info(machine).name)
-    names = fmu_parameter_names(machine)
+    names = fmu_parameter_names(layout)
     p = ca.SX.sym("p", len(names))
     given = dict(zip(names, ca.vertsplit(p), strict=True))
     full = ca.vertcat(*[given.get(n, ca.SX(0)) for n in layout.parameter_names])
     x = ca.SX.sym("x", len(layout.state_names))
     inputs = ca.SX.sym("in", len(layout.input_names) + len(layout.exogenous_names))
-    xdot, y = plant_function(machine)(x, inputs[0], inputs[1:], full)
+    xdot, y = plant_function(layout)(x, inputs[0], inputs[1:], full)
     ode = ca.Function("fmu_ode", [x, inputs, p], [xdot, y], ["x", "in", "p"], ["xdot", "y"])
-    x0 = equilibrium_function(machine)(full)[0]
+    x0 = equilibrium_function(layout)(full)[0]
     start = ca.Function("fmu_start", [p], [x0], ["p"], ["x0"])
     return ode, start
 
@@ -104,24 +106,23 @@ def _write_sources(
     params: np.ndarray,
     controller: str | None,
     settings: np.ndarray | None,
-    machine: str = DEFAULT_MACHINE,
+    layout: PlantLayout = SKID_STEER,
 ) -> tuple[bytes, str]:
     """Write the C sources into ``folder``; return (modelDescription.xml, model identifier)."""
-    info = machine_info(machine)
-    layout = plant_layout(info.name)
-    n_p = len(fmu_parameter_names(info.name))
-    ode, start = fmu_functions(info.name)
+    info = layout.machine
+    n_p = len(fmu_parameter_names(layout))
+    ode, start = fmu_functions(layout)
     generator = ca.CodeGenerator("fmu_model.c", {"with_header": True})
     generator.add(ode)
     generator.add(start)
-    x0, u0 = static_state(params, info.name)
-    variables = fmu_variables(params, x0, u0, info.name)
+    x0, u0 = static_state(params, layout)
+    variables = fmu_variables(params, x0, u0, layout)
     identifier, n_set, n_z = MODEL_IDENTIFIER, 0, 0
     if controller is not None:
-        sample, init = closed_loop_functions(controller, ode, start, info.name)
+        sample, init = closed_loop_functions(controller, ode, start, layout)
         generator.add(sample)
         generator.add(init)
-        variables = closed_loop_variables(variables, controller, settings, info.name)
+        variables = closed_loop_variables(variables, controller, settings, layout)
         identifier = f"loader_{controller}"
         n_set, n_z = sample.size1_in(2) - n_p, sample.size1_in(3)
     generator.generate(str(folder) + os.sep)
@@ -190,7 +191,7 @@ def export_plant_fmu(
     controller: str | None = None,
     settings: np.ndarray | None = None,
     include_sources: bool = True,
-    machine: str = DEFAULT_MACHINE,
+    machine: MachineSource = SKID_STEER,
 ) -> Path:
     """Build a Model Exchange FMU (FMI 2.0, linux64) of the nonlinear plant and write ``path``.
 
@@ -210,8 +211,9 @@ def export_plant_fmu(
         settings_vector_for_plant`); required with ``controller``.
     include_sources : bool
         Also put the C sources into ``sources/`` of the FMU (for inspection and rebuilding).
-    machine : str
-        A machine of :func:`~loader_model.machines.list_machines` or its description file
+    machine : PlantLayout, str or pathlib.Path
+        The machine resolved (:func:`~loader_model.plant.layout.plant_layout`), or a machine of
+        :func:`~loader_model.machines.list_machines` or its description file resolved once here
         (default the skid-steer); ``params`` is then in its plant layout's order
         (:func:`~loader_model.plant.layout.plant_layout`); a controller reads the same named
         sensors on every machine (:mod:`loader_model.fmu.closed_loop`).
@@ -228,8 +230,8 @@ def export_plant_fmu(
         written then.
     """
     target = check_output_path(path, (".fmu",), "FMU")
-    info = machine_info(machine)
-    n_params = len(plant_layout(info.name).parameter_names)
+    layout = resolve_layout(machine)
+    n_params = len(layout.parameter_names)
     params = np.asarray(params, dtype=float)
     if params.shape != (n_params,) or not np.all(np.isfinite(params)):
         raise ValueError(
@@ -248,7 +250,7 @@ def export_plant_fmu(
         build = Path(temporary)
         sources = build / "sources"
         sources.mkdir()
-        xml, identifier = _write_sources(sources, params, controller, settings, info.name)
+        xml, identifier = _write_sources(sources, params, controller, settings, layout)
         library = build / f"{identifier}.so"
         _compile(compiler, sources, library)
 

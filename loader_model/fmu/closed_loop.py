@@ -36,8 +36,7 @@ from loader_model.control.controllers import controller_function, controller_sta
 from loader_model.control.sensors import SENSOR_NAMES
 from loader_model.control.settings import SETTINGS_NAMES
 from loader_model.fmu.variables import FmuVariable, fmu_parameter_names
-from loader_model.machines import DEFAULT_MACHINE
-from loader_model.plant.layout import plant_layout
+from loader_model.plant.layout import SKID_STEER, PlantLayout
 
 __all__ = [
     "CONTROLLER_PARAMETERS",
@@ -77,26 +76,26 @@ def controller_parameter_values(settings: np.ndarray) -> np.ndarray:
 
 
 def _named_indices(
-    names: tuple[str, ...], wanted: tuple[str, ...], what: str, machine: str
+    names: tuple[str, ...], wanted: tuple[str, ...], what: str, layout: PlantLayout
 ) -> list[int]:
     """Indices of ``wanted`` in ``names``; ValueError naming the missing ones."""
     missing = [name for name in wanted if name not in names]
     if missing:
         raise ValueError(
-            f"machine {machine!r}: its plant has no {what} {missing} that the controller "
+            f"machine {layout.name!r}: its plant has no {what} {missing} that the controller "
             f"reads; a closed-loop FMU needs {list(wanted)}"
         )
     return [names.index(name) for name in wanted]
 
 
 def closed_loop_functions(
-    controller: str, ode: ca.Function, start: ca.Function, machine: str = DEFAULT_MACHINE
+    controller: str, ode: ca.Function, start: ca.Function, layout: PlantLayout = SKID_STEER
 ) -> tuple[ca.Function, ca.Function]:
     """``fmu_sample(x, in, p, z) -> (z_next, u)`` and ``fmu_ctrl_init(x, in, p) -> z0``.
 
     ``p`` is (FMU plant parameters, controller parameters); ``in`` is (held command, w).
     ``ode`` and ``start`` are the plant FMU's Functions (:func:`~loader_model.fmu.build.
-    fmu_functions`) of ``machine`` (default the skid-steer), whose outputs, states and FMU
+    fmu_functions`) of the machine ``layout`` (default the skid-steer), whose outputs, states and FMU
     parameters are then named by its plant layout.
 
     Raises
@@ -107,19 +106,18 @@ def closed_loop_functions(
     """
     law = controller_function(controller)
     n_z = len(controller_state_names(controller))
-    layout = plant_layout(machine)
-    parameter_names = fmu_parameter_names(machine)
+    parameter_names = fmu_parameter_names(layout)
     n_p = len(parameter_names)
     facts_from = tuple(v for v in _FROM_PLANT.values() if v)
     fact_index = dict(
         zip(
             facts_from,
-            _named_indices(parameter_names, facts_from, "parameters", machine),
+            _named_indices(parameter_names, facts_from, "parameters", layout),
             strict=True,
         )
     )
-    sensor_index = _named_indices(layout.output_names, SENSOR_NAMES, "outputs", machine)
-    (hold_index,) = _named_indices(layout.state_names, ("V_p",), "state", machine)
+    sensor_index = _named_indices(layout.output_names, SENSOR_NAMES, "outputs", layout)
+    (hold_index,) = _named_indices(layout.state_names, ("V_p",), "state", layout)
     x = ca.SX.sym("x", ode.size1_in(0))
     inputs = ca.SX.sym("in", ode.size1_in(1))
     p = ca.SX.sym("p", n_p + len(_EXPOSED))
@@ -149,20 +147,20 @@ def closed_loop_variables(
     plant_variables: list[FmuVariable],
     controller: str,
     settings: np.ndarray,
-    machine: str = DEFAULT_MACHINE,
+    layout: PlantLayout = SKID_STEER,
 ) -> list[FmuVariable]:
     """The closed-loop FMU's Real variables, renumbered 0, 1, ... (wrapper layout).
 
-    Order: plant parameters (those of ``machine``, default the skid-steer), ``controller.
+    Order: plant parameters (those of the machine ``layout``, default the skid-steer), ``controller.
     <setting>``, ``V_p_ref`` (now a discrete output: the held command), the exogenous inputs,
     states, derivatives, plant outputs, ``controller.<z>``.
     """
     from dataclasses import replace
 
-    n_p = len(fmu_parameter_names(machine))
+    n_p = len(fmu_parameter_names(layout))
     if plant_variables[n_p].name != "V_p_ref":
         raise ValueError(
-            f"plant_variables of machine {machine!r}: variable {n_p} is "
+            f"plant_variables of machine {layout.name!r}: variable {n_p} is "
             f"{plant_variables[n_p].name!r}, expected the command 'V_p_ref'"
         )
     settings_vars = [

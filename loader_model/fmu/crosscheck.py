@@ -26,9 +26,13 @@ import casadi as ca
 import numpy as np
 
 from loader_model.fmu.variables import state_nominals
-from loader_model.machines import DEFAULT_MACHINE
 from loader_model.plant.equilibrium import static_state
-from loader_model.plant.layout import plant_layout
+from loader_model.plant.layout import (
+    SKID_STEER,
+    MachineSource,
+    PlantLayout,
+    resolve_layout,
+)
 from loader_model.plant.plant import EXOGENOUS_NAMES, INPUT_NAMES, plant_function
 
 __all__ = ["CrossCheck", "bump_input", "cross_check", "reference_response"]
@@ -83,7 +87,7 @@ def reference_response(
     reltol: float = 1e-11,
     controller: str | None = None,
     settings: np.ndarray | None = None,
-    machine: str = DEFAULT_MACHINE,
+    layout: PlantLayout = SKID_STEER,
 ) -> dict[str, np.ndarray]:
     """Outputs of the plant Function integrated by cvodes with the input held over each step.
 
@@ -91,14 +95,13 @@ def reference_response(
     controller Function reads the sensors of y(t_k) and its command is held until t_{k+1}; its
     states start at their fixed point (:func:`~loader_model.control.linear_controller.
     linear_controller`). The time grid must then be the controller's sample grid. The command is
-    returned as ``V_p_ref``. ``machine`` (default the skid-steer) is the plant's machine; ``w``
+    returned as ``V_p_ref``. ``layout`` (default the skid-steer) is the plant's machine; ``w``
     then has the columns of its exogenous inputs (the same names as the skid-steer's), and the
     controller reads its sensors by name from that machine's outputs.
     """
-    layout = plant_layout(machine)
-    plant = plant_function(machine)
-    x0, u0 = static_state(params, machine)
-    nominal = state_nominals(x0, params, machine)
+    plant = plant_function(layout)
+    x0, u0 = static_state(params, layout)
+    nominal = state_nominals(x0, params, layout)
     z = ca.SX.sym("z", x0.size)
     held = ca.SX.sym("w", len(layout.exogenous_names))
     command = ca.SX.sym("u")
@@ -123,7 +126,7 @@ def reference_response(
         law = controller_function(controller)
 
         def sensors(y: np.ndarray) -> np.ndarray:
-            return sensor_signals(y, machine)
+            return sensor_signals(y, layout)
 
         y0 = np.asarray(plant(x0, u0, w[0], params)[1]).ravel()
         z_c = linear_controller(controller, settings, sensors(y0)).operating_state
@@ -151,7 +154,7 @@ def cross_check(
     reltol: float = 1e-8,
     controller: str | None = None,
     settings: np.ndarray | None = None,
-    machine: str = DEFAULT_MACHINE,
+    machine: MachineSource = SKID_STEER,
 ) -> CrossCheck:
     """Simulate ``fmu_path`` with FMPy over :func:`bump_input` and compare with the reference.
 
@@ -166,12 +169,16 @@ def cross_check(
     controller, settings
         For a closed-loop FMU: the controller and its settings vector it was built with; the
         pump command ``V_p_ref`` is then compared too.
+    machine : PlantLayout, str or pathlib.Path
+        The FMU's machine: resolved (:func:`~loader_model.plant.layout.plant_layout`), or a name
+        or description file resolved once here (default the skid-steer).
     """
     import fmpy
 
+    layout = resolve_layout(machine)
     time, w = bump_input()
     reference = reference_response(
-        params, time, w, controller=controller, settings=settings, machine=machine
+        params, time, w, controller=controller, settings=settings, layout=layout
     )
     compared = COMPARED if controller is None else (*COMPARED, "V_p_ref")
     # a staircase table (each sample repeated at the next sample's time): FMPy then stops at
@@ -182,7 +189,7 @@ def cross_check(
     signal = np.zeros(stairs.size, dtype=[("time", float)] + [(name, float) for name in names])
     signal["time"] = stairs
     if controller is None:
-        signal[INPUT_NAMES[0]] = static_state(params, machine)[1]
+        signal[INPUT_NAMES[0]] = static_state(params, layout)[1]
     for i, name in enumerate(EXOGENOUS_NAMES):
         signal[name] = held[:, i]
     result = fmpy.simulate_fmu(

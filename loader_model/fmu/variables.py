@@ -35,8 +35,7 @@ from loader_model.fmu.variable_tables import (
     _STATE_DESCRIPTIONS,
     _STATE_UNITS,
 )
-from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
-from loader_model.plant.layout import PlantLayout, plant_layout
+from loader_model.plant.layout import SKID_STEER, PlantLayout
 from loader_model.plant.plant import EXOGENOUS_NAMES, INPUT_NAMES, OUTPUT_NAMES, STATE_NAMES
 from loader_model.plant.plant_parameters import (
     HYDRAULIC_PARAMETERS,
@@ -113,22 +112,22 @@ def _parameter_unit(name: str, layout: PlantLayout | None) -> str:
     return PLANT_PARAMETER_UNITS[name]
 
 
-def _layout(machine: str) -> PlantLayout | None:
+def _layout(layout: PlantLayout) -> PlantLayout | None:
     """None for the skid-steer (the module constants), else the machine's plant layout."""
-    name = resolve_machine_name(machine)
-    return None if name == DEFAULT_MACHINE else plant_layout(name)
+    return None if layout.machine.is_default else layout
 
 
-def fmu_parameter_names(machine: str = DEFAULT_MACHINE) -> tuple[str, ...]:
-    """The FMU's parameters of ``machine`` in value-reference order (its completed ones left out).
+def fmu_parameter_names(layout: PlantLayout = SKID_STEER) -> tuple[str, ...]:
+    """The FMU's parameters of the machine ``layout`` in value-reference order (its completed
+    ones left out).
 
     For the skid-steer: :data:`FMU_PARAMETER_NAMES`.
     """
-    layout = _layout(machine)
-    if layout is None:
+    own = _layout(layout)
+    if own is None:
         return FMU_PARAMETER_NAMES
-    completed = set(layout.machine.static_names)
-    return tuple(name for name in layout.parameter_names if name not in completed)
+    completed = set(own.machine.static_names)
+    return tuple(name for name in own.parameter_names if name not in completed)
 
 
 def _state_unit(name: str) -> str:
@@ -166,21 +165,21 @@ def _exogenous_description(name: str) -> str:
     }[name]
 
 
-def fmu_parameter_values(params: np.ndarray, machine: str = DEFAULT_MACHINE) -> np.ndarray:
+def fmu_parameter_values(params: np.ndarray, layout: PlantLayout = SKID_STEER) -> np.ndarray:
     """The FMU's parameter values (order :func:`fmu_parameter_names`) from a plant vector."""
-    layout = _layout(machine)
-    names = PLANT_PARAMETER_NAMES if layout is None else layout.parameter_names
-    index = [names.index(name) for name in fmu_parameter_names(machine)]
+    own = _layout(layout)
+    names = PLANT_PARAMETER_NAMES if own is None else own.parameter_names
+    index = [names.index(name) for name in fmu_parameter_names(layout)]
     return np.asarray(params, dtype=float)[index]
 
 
 def state_nominals(
-    x0: np.ndarray, params: np.ndarray, machine: str = DEFAULT_MACHINE
+    x0: np.ndarray, params: np.ndarray, layout: PlantLayout = SKID_STEER
 ) -> np.ndarray:
     """Nominal magnitude of each state: its static value, at least a floor of its unit."""
-    layout = _layout(machine)
-    names = PLANT_PARAMETER_NAMES if layout is None else layout.parameter_names
-    states = STATE_NAMES if layout is None else layout.state_names
+    own = _layout(layout)
+    names = PLANT_PARAMETER_NAMES if own is None else own.parameter_names
+    states = STATE_NAMES if own is None else own.state_names
     values = dict(zip(names, np.asarray(params, dtype=float), strict=True))
     floors = _NOMINAL_FLOOR | {
         "m^3/rev": values["V_p_max"],
@@ -193,7 +192,7 @@ def state_nominals(
 
 
 def fmu_variables(
-    params: np.ndarray, x0: np.ndarray, u0: float, machine: str = DEFAULT_MACHINE
+    params: np.ndarray, x0: np.ndarray, u0: float, layout: PlantLayout = SKID_STEER
 ) -> list[FmuVariable]:
     """Every Real variable in value-reference order (module docstring), with start values.
 
@@ -203,19 +202,19 @@ def fmu_variables(
         Plant parameter vector (order ``PLANT_PARAMETER_NAMES``): the parameters' start values.
     x0, u0
         Static state and pump command of ``params``: the states' and V_p_ref's start values.
-    machine : str
+    layout : PlantLayout
         The machine (default the skid-steer); ``params`` and ``x0`` are in its layout's orders.
     """
-    layout = _layout(machine)
-    exogenous = EXOGENOUS_NAMES if layout is None else layout.exogenous_names
-    states = STATE_NAMES if layout is None else layout.state_names
-    outputs = OUTPUT_NAMES if layout is None else layout.output_names
+    own = _layout(layout)
+    exogenous = EXOGENOUS_NAMES if own is None else own.exogenous_names
+    states = STATE_NAMES if own is None else own.state_names
+    outputs = OUTPUT_NAMES if own is None else own.output_names
     out: list[FmuVariable] = []
     fixed = ("parameter", "fixed", "exact")
-    values = fmu_parameter_values(params, machine)
-    for name, value in zip(fmu_parameter_names(machine), values, strict=True):
-        unit = _unit(_parameter_unit(name, layout))
-        description = _parameter_description(name, layout)
+    values = fmu_parameter_values(params, layout)
+    for name, value in zip(fmu_parameter_names(layout), values, strict=True):
+        unit = _unit(_parameter_unit(name, own))
+        description = _parameter_description(name, own)
         out.append(FmuVariable(name, len(out), *fixed, unit, description, value))
     out.append(
         FmuVariable(
@@ -242,7 +241,7 @@ def fmu_variables(
                 0.0,
             )
         )
-    nominals = state_nominals(x0, params, machine)
+    nominals = state_nominals(x0, params, layout)
     for i, name in enumerate(states):
         description = _STATE_DESCRIPTIONS.get(name) or (
             f"rate of {name.replace('d', '', 1)}" if "d_" in name else f"coordinate {name}"
@@ -275,7 +274,7 @@ def fmu_variables(
             )
         )
     for name in outputs:
-        unit, description = _output(name, layout)
+        unit, description = _output(name, own)
         out.append(
             FmuVariable(name, len(out), "output", "continuous", "calculated", unit, description)
         )

@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 import loader_model_generated as _generated
-from loader_model.machines import machine
+from loader_model.machines import MachineInfo
 from loader_model.parameters.machine_files import MachineParameters, resolve_machine_parameters
 from loader_model.parameters.sets import BucketLoad, LoaderParameters
 from loader_model.vehicle.cylinder import (
@@ -124,7 +124,7 @@ def _piston_position(params: np.ndarray) -> float:
 
 
 def machine_undamped_matrices(
-    name: str,
+    info: MachineInfo,
     params: MachineParameters | str | Path | None = None,
     load: str | None = None,
     *,
@@ -134,8 +134,8 @@ def machine_undamped_matrices(
 
     Parameters
     ----------
-    name
-        A machine of :func:`loader_model.machines.list_machines`.
+    info
+        The machine resolved (:func:`loader_model.machines.machine`).
     params
         Its parameter set, a path to its flat parameter file, or None for the shipped values
         (:mod:`loader_model.parameters.machine_files`).
@@ -151,9 +151,8 @@ def machine_undamped_matrices(
         If the parameters are invalid or the machine does not stand
         (:func:`loader_model.vehicle.statics.resolve_machine_values`).
     """
-    info = machine(name)
-    params = resolve_machine_parameters(info.name, params)
-    values = resolve_machine_values(info.name, params, load)
+    params = resolve_machine_parameters(info, params)
+    values = resolve_machine_values(info, params, load)
     if not gravity_stiffness:
         values = values | {"g": 0.0}
     completed, force = info.function("complete_parameters")(

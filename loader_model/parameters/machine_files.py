@@ -38,7 +38,7 @@ from typing import Any
 
 from loader_model.io.arrays import real_integer, real_number
 from loader_model.io.files import read_text
-from loader_model.machines import MachineInfo, machine
+from loader_model.machines import MachineInfo
 from loader_model.parameters.checks import MAX_ROD_TO_PISTON_RATIO
 from loader_model.parameters.hydraulics import CylinderParameters, HydraulicParameters
 from loader_model.parameters.tyres import tyre_table
@@ -244,13 +244,12 @@ def parse_machine_parameters(text: str, info: MachineInfo, origin: str) -> Machi
     )
 
 
-def load_machine_parameters(path: str | os.PathLike[str], name: str) -> MachineParameters:
-    """Read and check the parameter file ``path`` of machine ``name`` (every error names it)."""
-    info = machine(name)
+def load_machine_parameters(path: str | os.PathLike[str], info: MachineInfo) -> MachineParameters:
+    """Read and check the parameter file ``path`` of machine ``info`` (every error names it)."""
     return parse_machine_parameters(read_text(path, "machine parameter file"), info, str(path))
 
 
-def default_machine_parameters(name: str) -> MachineParameters:
+def default_machine_parameters(info: MachineInfo) -> MachineParameters:
     """The shipped parameter set ``loader_model/data/machines/<name>.toml`` of a machine.
 
     Raises
@@ -259,7 +258,7 @@ def default_machine_parameters(name: str) -> MachineParameters:
         For the skid-steer (its parameters are the grouped files of
         :mod:`loader_model.parameters.sets`) or a machine without shipped values.
     """
-    info = machine(name)
+    name = info.name
     if info.is_default:
         raise ValueError(
             f"machine {name!r} has grouped parameter files (loader_model.parameters.sets)"
@@ -274,17 +273,18 @@ def default_machine_parameters(name: str) -> MachineParameters:
 
 
 def resolve_machine_parameters(
-    name: str, params: MachineParameters | str | os.PathLike[str] | None
+    info: MachineInfo, params: MachineParameters | str | os.PathLike[str] | None
 ) -> MachineParameters:
-    """A checked parameter set of ``name``: given, read from a path, or the shipped default."""
+    """A checked parameter set of machine ``info``: given, read from a path, or the shipped
+    default."""
     if params is None:
-        return default_machine_parameters(name)
+        return default_machine_parameters(info)
     if isinstance(params, MachineParameters):
-        if params.machine != name:
-            raise ValueError(f"parameters of machine {params.machine!r} given for {name!r}")
+        if params.machine != info.name:
+            raise ValueError(f"parameters of machine {params.machine!r} given for {info.name!r}")
         return params
     if isinstance(params, str | os.PathLike):
-        return load_machine_parameters(Path(params), name)
+        return load_machine_parameters(Path(params), info)
     raise ValueError(f"params must be a MachineParameters, a path or None; got {params!r}")
 
 

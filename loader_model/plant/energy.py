@@ -45,9 +45,8 @@ from typing import Any
 
 import casadi as ca
 
-from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
 from loader_model.plant import components as hyd
-from loader_model.plant.layout import PlantLayout, plant_layout
+from loader_model.plant.layout import SKID_STEER, MachineSource, PlantLayout, resolve_layout
 from loader_model.plant.plant import hydraulic_drive, named_parameters, plant_function
 
 __all__ = [
@@ -81,12 +80,12 @@ def _has_internal(layout: PlantLayout) -> bool:
     return bool(layout.machine.locked_cylinders)
 
 
-def energy_names(machine: str = DEFAULT_MACHINE) -> tuple[tuple[str, ...], tuple[str, ...]]:
-    """The stored-energy and loss names of ``machine``: :data:`ENERGY_NAMES`,
+def energy_names(layout: PlantLayout = SKID_STEER) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """The stored-energy and loss names of the machine ``layout``: :data:`ENERGY_NAMES`,
     :data:`LOSS_NAMES`, each with ``"internal"`` appended for a machine with locked cylinders
     (their springs' energy and their dampers' loss, the generated ``V_internal``,
     ``D_internal``)."""
-    if _has_internal(plant_layout(resolve_machine_name(machine))):
+    if _has_internal(layout):
         return (*ENERGY_NAMES, "internal"), (*LOSS_NAMES, "internal")
     return ENERGY_NAMES, LOSS_NAMES
 
@@ -125,13 +124,13 @@ def _hydraulics(
     return stored, inputs, losses
 
 
-def build_energy(symbol: type = ca.SX, machine: str = DEFAULT_MACHINE) -> ca.Function:
+def build_energy(symbol: type = ca.SX, layout: PlantLayout = SKID_STEER) -> ca.Function:
     """``plant_energy(x, u, w, road_velocity, params) -> (E, E_parts, P_in, P_loss, F_elastic)``.
 
     ``road_velocity`` is the time derivative of the road displacement w[0:4] (what the road
     really does); w[4:8] is the rate the tyre law's dampers see. ``F_elastic`` (4,): the tyres'
     elastic forces, whose product with ``road_velocity`` is the part of P_road that depends on it.
-    For another ``machine`` the sizes are its own, and its locked cylinders add an entry to
+    For another machine (``layout``) the sizes are its own, and its locked cylinders add an entry to
     ``E_parts`` and ``P_loss`` (:func:`energy_names`).
 
     Raises
@@ -140,7 +139,6 @@ def build_energy(symbol: type = ca.SX, machine: str = DEFAULT_MACHINE) -> ca.Fun
         For a machine with a valve circuit (its supply, meter-out and spool-leakage terms are
         not booked here).
     """
-    layout = plant_layout(machine)
     info = layout.machine
     if layout.circuit != "pump":
         raise ValueError(
@@ -177,38 +175,39 @@ def build_energy(symbol: type = ca.SX, machine: str = DEFAULT_MACHINE) -> ca.Fun
     )
 
 
-def energy_function(machine: str = DEFAULT_MACHINE) -> ca.Function:
-    """The SX :func:`build_energy` Function of ``machine``, built once per process."""
-    return _energy_function(resolve_machine_name(machine))
+def energy_function(machine: MachineSource = SKID_STEER) -> ca.Function:
+    """The SX :func:`build_energy` Function of ``machine`` (its
+    :class:`~loader_model.plant.layout.PlantLayout`, or a name or description file resolved
+    once here), built once per process and machine."""
+    return _energy_function(resolve_layout(machine))
 
 
 @cache
-def _energy_function(machine: str) -> ca.Function:
-    return build_energy(ca.SX, machine)
+def _energy_function(layout: PlantLayout) -> ca.Function:
+    return build_energy(ca.SX, layout)
 
 
-def energy_rate_function(machine: str = DEFAULT_MACHINE) -> ca.Function:
-    """``energy_rate(x, u, w, road_velocity, params) -> (dE_dt, P_net)`` of ``machine``
-    (:func:`_energy_rate_function`)."""
-    return _energy_rate_function(resolve_machine_name(machine))
+def energy_rate_function(layout: PlantLayout = SKID_STEER) -> ca.Function:
+    """``energy_rate(x, u, w, road_velocity, params) -> (dE_dt, P_net)`` of the machine
+    ``layout`` (:func:`_energy_rate_function`)."""
+    return _energy_rate_function(layout)
 
 
 @cache
-def _energy_rate_function(machine: str) -> ca.Function:
+def _energy_rate_function(layout: PlantLayout) -> ca.Function:
     """``energy_rate(x, u, w, road_velocity, params) -> (dE_dt, P_net)``: both sides of the balance.
 
     dE/dt = ∂E/∂x · f(x, u, w) + ∂E/∂w_road · road_velocity by forward AD through the plant's
     ``xdot``; P_net = ΣP_in − ΣP_loss. Equal to round-off at any state (module docstring).
     """
-    layout = plant_layout(machine)
     n_w = len(layout.machine.road_names)
     x = ca.SX.sym("x", len(layout.state_names))
     u = ca.SX.sym("u", len(layout.input_names))
     w = ca.SX.sym("w", len(layout.exogenous_names))
     road_velocity = ca.SX.sym("road_velocity", n_w)
     params = ca.SX.sym("params", len(layout.parameter_names))
-    energy, _, inputs, losses, _ = energy_function(machine)(x, u, w, road_velocity, params)
-    xdot = plant_function(machine)(x, u, w, params)[0]
+    energy, _, inputs, losses, _ = energy_function(layout)(x, u, w, road_velocity, params)
+    xdot = plant_function(layout)(x, u, w, params)[0]
     direction = ca.vertcat(xdot, road_velocity)
     rate = ca.jtimes(energy, ca.vertcat(x, w[0:n_w]), direction)
     return ca.Function(

@@ -34,10 +34,9 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
-from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
 from loader_model.plant import valve_circuit as valve
 from loader_model.plant.components import ATMOSPHERIC_PRESSURE_PA
-from loader_model.plant.layout import plant_layout
+from loader_model.plant.layout import SKID_STEER, MachineSource, PlantLayout, resolve_layout
 from loader_model.plant.occupant import OCCUPANT_STATE_NAMES
 from loader_model.vehicle.cylinder import static_piston_pressure
 
@@ -59,10 +58,7 @@ def _valve_hold(theta: dict[str, Any], p_a: Any, holding: Any) -> Any:
     return ca.if_else(leak > 0, theta["x_s_lap"] + travel, 0)
 
 
-def _build(
-    symbol: type = ca.SX, machine: str = DEFAULT_MACHINE, circuit: str | None = None
-) -> ca.Function:
-    layout = plant_layout(machine, circuit)
+def _build(symbol: type, layout: PlantLayout) -> ca.Function:
     params = symbol.sym("params", len(layout.parameter_names))
     theta = {name: params[i] for i, name in enumerate(layout.parameter_names)}
     _, force = layout.machine.function("complete_parameters")(params[: layout.n_mechanical])
@@ -93,21 +89,21 @@ def _build(
 
 
 @cache
-def _equilibrium_function(machine: str, circuit: str | None = None) -> ca.Function:
-    return _build(ca.SX, machine, circuit)
-
-
-def equilibrium_function(machine: str = DEFAULT_MACHINE, circuit: str | None = None) -> ca.Function:
+def equilibrium_function(layout: PlantLayout = SKID_STEER) -> ca.Function:
     """``plant_equilibrium(params) -> (x0, u0, F_act0)``: static state, the actuator command
-    that holds it, and the cylinder force (SX, built once per machine; ``circuit`` as
-    :func:`~loader_model.plant.layout.plant_layout`)."""
-    return _equilibrium_function(resolve_machine_name(machine), circuit)
+    that holds it, and the cylinder force (SX, built once per machine and circuit)."""
+    return _build(ca.SX, layout)
 
 
-def static_state(params: np.ndarray, machine: str = DEFAULT_MACHINE) -> tuple[np.ndarray, float]:
+def static_state(
+    params: np.ndarray, machine: MachineSource = SKID_STEER
+) -> tuple[np.ndarray, float]:
     """Numeric static state (order of the machine's plant states, default the skid-steer's
-    :data:`~loader_model.plant.plant.STATE_NAMES`) and command."""
-    x0, u0, _ = equilibrium_function(machine)(np.asarray(params, dtype=float))
+    :data:`~loader_model.plant.plant.STATE_NAMES`) and command; ``machine`` its
+    :class:`~loader_model.plant.layout.PlantLayout`, or a name or description file resolved
+    once here."""
+    layout = resolve_layout(machine)
+    x0, u0, _ = equilibrium_function(layout)(np.asarray(params, dtype=float))
     state = np.asarray(x0, dtype=float).ravel()
-    assert state.shape == (len(plant_layout(resolve_machine_name(machine)).state_names),)
+    assert state.shape == (len(layout.state_names),)
     return state, float(u0)

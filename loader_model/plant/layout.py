@@ -20,17 +20,36 @@ lengths and orders of x, u and y are the same for both.
 φ is the boom's angle to the chassis (the first pinned body); a machine with further pinned
 bodies (the wheel loader's bucket, ψ) adds their joint angles after it. The specific forces are
 those of the description's sensor points, in its order and axes.
+
+A :class:`PlantLayout` is the machine resolved once: its registry entry (description, generated
+functions, tyre and parameter metadata: :class:`~loader_model.machines.MachineInfo`), its lift
+circuit and the plant's names and sizes. The command line and the public entry points resolve a
+machine name or description file once (:func:`plant_layout`, :func:`resolve_layout`); the
+scenario (:class:`~loader_model.plant.scenario.PlantScenario`) carries the layout, and everything
+below takes it (or its :attr:`PlantLayout.machine`) instead of a name. A layout pickles as its
+machine's source and hash and its circuit, so a worker process resolves it again through the
+verified machine registry.
 """
 
 from __future__ import annotations
 
-import functools
+import os
 from dataclasses import dataclass
+from typing import Any
 
 from loader_model.machines import DEFAULT_MACHINE, MachineInfo, machine
 from loader_model.plant.occupant import OCCUPANT_PARAMETERS, OCCUPANT_STATE_NAMES
 
-__all__ = ["CIRCUITS", "HYDRAULIC_STATE_NAMES", "PlantLayout", "plant_layout"]
+__all__ = [
+    "CIRCUITS",
+    "HYDRAULIC_STATE_NAMES",
+    "SKID_STEER",
+    "MachineSource",
+    "PlantLayout",
+    "machine_layout",
+    "plant_layout",
+    "resolve_layout",
+]
 
 #: Hydraulic states after the mechanical ones (chamber pressures, pump displacement, accumulator).
 HYDRAULIC_STATE_NAMES: tuple[str, ...] = ("p_A", "p_B", "V_p", "Vd_p", "V_acc")
@@ -41,9 +60,11 @@ CIRCUITS: dict[str, tuple[str, str, str, str, str, str]] = {
 }
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class PlantLayout:
-    """Sizes and names of the plant of one machine (module notes).
+    """Sizes and names of the plant of one machine: the machine resolved once (module notes).
+
+    Two layouts are equal when their machines (name and description hash) and circuits are.
 
     Attributes
     ----------
@@ -64,6 +85,27 @@ class PlantLayout:
     parameter_names: tuple[str, ...]
     sensor_outputs: tuple[tuple[str, int, int], ...]
     circuit: str = "pump"
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, PlantLayout):
+            return NotImplemented
+        return (self.machine, self.circuit) == (other.machine, other.circuit)
+
+    def __hash__(self) -> int:
+        return hash((self.machine, self.circuit))
+
+    def __reduce__(self) -> tuple[Any, tuple[MachineInfo, str]]:
+        return machine_layout, (self.machine, self.circuit)
+
+    @property
+    def name(self) -> str:
+        """The machine's name (:attr:`MachineInfo.name`)."""
+        return self.machine.name
+
+    @property
+    def is_default(self) -> bool:
+        """True for the paper's skid-steer with its pump circuit."""
+        return self.machine.is_default and self.circuit == "pump"
 
     @property
     def command_limit(self) -> str:
@@ -118,9 +160,44 @@ def _joint_outputs(info: MachineInfo) -> tuple[str, ...]:
     return angles if angles[0] == "phi" else ("phi", *angles[1:])
 
 
-@functools.cache
-def plant_layout(name: str = DEFAULT_MACHINE, circuit: str | None = None) -> PlantLayout:
-    """The plant layout of machine ``name`` (:func:`loader_model.machines.machine`; cached).
+#: A machine as the public entry points take it: a resolved layout, a machine name
+#: (:func:`loader_model.machines.list_machines`) or the path of a description file.
+MachineSource = PlantLayout | str | os.PathLike[str]
+
+_LAYOUTS: dict[tuple[MachineInfo, str], PlantLayout] = {}
+
+
+def plant_layout(
+    source: str | os.PathLike[str] = DEFAULT_MACHINE, circuit: str | None = None
+) -> PlantLayout:
+    """The machine ``source`` resolved once: its plant layout (module notes).
+
+    The look-up by name for the command line and the public entry points; everything below
+    them takes the layout. ``circuit`` as :func:`machine_layout`.
+
+    Parameters
+    ----------
+    source : str or pathlib.Path
+        A machine name or description file (:func:`loader_model.machines.machine`).
+    circuit : str, optional
+        ``"pump"`` or ``"valve"`` (default the description's ``[circuit] kind``).
+
+    Raises
+    ------
+    ValueError
+        For an unknown machine or circuit, or a machine without the sensor at its seat point.
+    """
+    return machine_layout(machine(source), circuit)
+
+
+def resolve_layout(source: MachineSource = DEFAULT_MACHINE) -> PlantLayout:
+    """``source`` itself if it is a :class:`PlantLayout`, else :func:`plant_layout` of it: the one
+    conversion of a public entry point that takes a machine as a layout, name or file."""
+    return source if isinstance(source, PlantLayout) else plant_layout(source)
+
+
+def machine_layout(info: MachineInfo, circuit: str | None = None) -> PlantLayout:
+    """The plant layout of the resolved machine ``info`` (built once per machine and circuit).
 
     ``circuit`` (``"pump"`` or ``"valve"``, default the description's ``[circuit] kind``)
     chooses the lift circuit; another one than the description's builds the same mechanics
@@ -129,12 +206,18 @@ def plant_layout(name: str = DEFAULT_MACHINE, circuit: str | None = None) -> Pla
     Raises
     ------
     ValueError
-        For an unknown machine or circuit, or a machine without the sensor at its seat point.
+        For an unknown circuit, or a machine without the sensor at its seat point.
     """
+    key = (info, info.circuit if circuit is None else circuit)
+    if key not in _LAYOUTS:
+        _LAYOUTS[key] = _build_layout(info, circuit)
+    return _LAYOUTS[key]
+
+
+def _build_layout(info: MachineInfo, circuit: str | None) -> PlantLayout:
     from loader_model.plant.plant_parameters import HYDRAULIC_PARAMETERS
     from loader_model.plant.valve_circuit import VALVE_PARAMETERS
 
-    info = machine(name)
     circuit = info.circuit if circuit is None else circuit
     if circuit not in CIRCUITS:
         raise ValueError(f"circuit {circuit!r} is not allowed; allowed: {', '.join(CIRCUITS)}")
@@ -205,3 +288,8 @@ def _valve_entries(
     shared = [item for item in HYDRAULIC_PARAMETERS if item[0] not in _PUMP_ONLY]
     at = [item[0] for item in shared].index("n_acc")
     return (*shared[:at], *valve, *shared[at:])
+
+
+#: The paper's skid-steer resolved once: the default machine of the functions that take a
+#: :class:`PlantLayout`.
+SKID_STEER: PlantLayout = plant_layout(DEFAULT_MACHINE)

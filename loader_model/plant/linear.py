@@ -31,9 +31,8 @@ from typing import Any
 import casadi as ca
 import numpy as np
 
-from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
 from loader_model.plant.equilibrium import static_state
-from loader_model.plant.layout import plant_layout
+from loader_model.plant.layout import SKID_STEER, MachineSource, PlantLayout, resolve_layout
 from loader_model.plant.occupant import OCCUPANT_STATE_NAMES
 from loader_model.plant.plant import plant_function
 
@@ -41,8 +40,8 @@ __all__ = ["PlantLinearisation", "linearise_plant", "undamped_matrices_from_plan
 
 
 @cache
-def _jacobian_function(machine: str = DEFAULT_MACHINE) -> ca.Function:
-    plant = plant_function(machine)
+def _jacobian_function(layout: PlantLayout) -> ca.Function:
+    plant = plant_function(layout)
     x = ca.SX.sym("x", plant.size1_in(0))
     u = ca.SX.sym("u", plant.size1_in(1))
     w = ca.SX.sym("w", plant.size1_in(2))
@@ -69,7 +68,7 @@ class PlantLinearisation:
     D_w: np.ndarray
     operating_state: np.ndarray
     operating_input: float
-    machine: str = DEFAULT_MACHINE
+    layout: PlantLayout = SKID_STEER
 
     def state_space(
         self, *, drop: tuple[str, ...] | None = None, exogenous: bool = True, name: str = "plant"
@@ -83,7 +82,7 @@ class PlantLinearisation:
         """
         import control
 
-        layout = plant_layout(self.machine)
+        layout = self.layout
         states = layout.state_names
         if drop is None:
             drop = layout.machine.anchor_names
@@ -125,36 +124,38 @@ def linearise_plant(
     u: float | None = None,
     w: Any = None,
     *,
-    machine: str = DEFAULT_MACHINE,
+    machine: MachineSource = SKID_STEER,
 ) -> PlantLinearisation:
-    """Linearise the plant of ``machine`` (default the skid-steer) at ``(x, u, w)``; default:
-    its static equilibrium, no road input."""
-    name = resolve_machine_name(machine)
+    """Linearise the plant of ``machine`` (its :class:`~loader_model.plant.layout.PlantLayout`,
+    or a name or description file resolved once here; default the skid-steer) at ``(x, u, w)``;
+    default: its static equilibrium, no road input."""
+    layout = resolve_layout(machine)
     params = np.asarray(params, dtype=float)
     if x is None or u is None:
-        x0, u0 = static_state(params, name)
+        x0, u0 = static_state(params, layout)
         x = x0 if x is None else x
         u = u0 if u is None else u
-    size = len(plant_layout(name).exogenous_names)
+    size = len(layout.exogenous_names)
     w = np.zeros(size) if w is None else np.asarray(w, dtype=float)
-    matrices = [np.asarray(m) for m in _jacobian_function(name)(x, u, w, params)]
+    matrices = [np.asarray(m) for m in _jacobian_function(layout)(x, u, w, params)]
     return PlantLinearisation(
-        *matrices, operating_state=np.asarray(x, float), operating_input=u, machine=name
+        *matrices, operating_state=np.asarray(x, float), operating_input=u, layout=layout
     )
 
 
 def undamped_matrices_from_plant(
-    params: np.ndarray, *, machine: str = DEFAULT_MACHINE
+    params: np.ndarray, *, machine: MachineSource = SKID_STEER
 ) -> tuple[np.ndarray, np.ndarray, float]:
     """M, K of Eq. 27 with the chambers closed (Eq. 28), and k_eq of the cylinders [N/m].
 
     ``params`` should have the pump, valves, leakage and friction switched off
     (:meth:`~loader_model.plant.plant_parameters.PlantOptions.closed`). k_eq is the stiffness
     of the closed oil columns along the cylinder axis: −∂F_act/∂x_cyl through the pressures.
+    ``machine``: as :func:`linearise_plant`.
     """
-    layout = plant_layout(resolve_machine_name(machine))
+    layout = resolve_layout(machine)
     info, index = layout.machine, layout.index
-    linear = linearise_plant(params, machine=info.name)
+    linear = linearise_plant(params, machine=layout)
     position = [index(n) for n in info.coordinate_names]
     rate = [index(n) for n in info.rate_names]
     pressure = [index("p_A"), index("p_B")]

@@ -21,9 +21,9 @@ from functools import cache
 
 import numpy as np
 
-from loader_model.machines import machine as machine_info
+from loader_model.machines import MachineInfo
 from loader_model.parameters.valve import ValveParameters
-from loader_model.plant.layout import plant_layout
+from loader_model.plant.layout import PlantLayout
 from loader_model.plant.plant_parameters import PlantOptions, plant_parameter_vector
 
 __all__ = [
@@ -56,15 +56,15 @@ def _skid_steer_defaults() -> dict[str, float]:
     return dict(zip(PLANT_PARAMETER_NAMES, vector.tolist(), strict=True))
 
 
-def precharge_pressure(name: str, params: object = None) -> float:
-    """Accumulator precharge [Pa gauge] of machine ``name``: :data:`PRECHARGE_FRACTION` of the
+def precharge_pressure(info: MachineInfo, params: object = None) -> float:
+    """Accumulator precharge [Pa gauge] of machine ``info``: :data:`PRECHARGE_FRACTION` of the
     lowest static piston pressure over its load cases (and its [model] values)."""
     from loader_model.parameters.machine_files import resolve_machine_parameters
     from loader_model.vehicle.statics import machine_static_equilibrium
 
-    values = resolve_machine_parameters(name, params)  # type: ignore[arg-type]
+    values = resolve_machine_parameters(info, params)  # type: ignore[arg-type]
     cases = (None, *values.loads)
-    lowest = min(machine_static_equilibrium(name, values, case)["p_A0"] for case in cases)
+    lowest = min(machine_static_equilibrium(info, values, case)["p_A0"] for case in cases)
     return PRECHARGE_FRACTION * lowest
 
 
@@ -96,17 +96,18 @@ def valve_plant_entries(valve: ValveParameters, supply: str = "load_sensing") ->
 
 
 def machine_plant_parameter_vector(
-    name: str,
+    layout: PlantLayout,
     params: object = None,
     load: str | None = None,
     options: PlantOptions | None = None,
 ) -> np.ndarray:
-    """The plant parameter vector of machine ``name`` (order ``plant_layout(name).parameter_names``).
+    """The plant parameter vector of a machine (order ``layout.parameter_names``).
 
     Parameters
     ----------
-    name : str
-        A machine of :func:`loader_model.machines.list_machines` other than the skid-steer.
+    layout : PlantLayout
+        The machine other than the skid-steer and its circuit
+        (:func:`~loader_model.plant.layout.plant_layout`).
     params : MachineParameters, str, pathlib.Path or None
         Its parameter file (None: the shipped one).
     load : str, optional
@@ -124,11 +125,11 @@ def machine_plant_parameter_vector(
     from loader_model.parameters.machine_files import resolve_machine_parameters
     from loader_model.vehicle.statics import resolve_machine_values
 
-    info = machine_info(name)
+    info = layout.machine
     if info.is_default:
         raise ValueError("the skid-steer's plant vector is plant_parameter_vector(loader, load)")
-    values = resolve_machine_parameters(info.name, params)  # type: ignore[arg-type]
-    model = resolve_machine_values(info.name, values, load)
+    values = resolve_machine_parameters(info, params)  # type: ignore[arg-type]
+    model = resolve_machine_values(info, values, load)
     cyl = values.cylinders
     entries = _skid_steer_defaults() | {n: model[n] for n in info.parameter_names if n in model}
     entries |= {n: 0.0 for n in info.static_names}  # completed inside the plant's graph
@@ -143,14 +144,14 @@ def machine_plant_parameter_vector(
         "k_end": cyl.end_stop_stiffness,
         "c_end": cyl.end_stop_damping,
         "K_oil": values.hydraulics["bulk_modulus"],
-        "p_0": precharge_pressure(info.name, values),
+        "p_0": precharge_pressure(info, values),
     }
     if values.valve is not None:
         entries |= valve_plant_entries(values.valve, info.circuit_supply)
     else:
         entries["p_charge"] = values.hydraulics["charge_pressure"]
     entries |= (options or PlantOptions()).switches()
-    names = plant_layout(info.name).parameter_names
+    names = layout.parameter_names
     missing = [n for n in names if n not in entries]
     if missing:
         raise ValueError(f"machine {info.name!r}: no value for plant parameters {missing}")

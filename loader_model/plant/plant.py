@@ -52,10 +52,15 @@ from typing import Any
 
 import casadi as ca
 
-from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
 from loader_model.plant import components as hyd
 from loader_model.plant.circuit import circuit_flows
-from loader_model.plant.layout import PlantLayout, plant_layout
+from loader_model.plant.layout import (
+    SKID_STEER,
+    MachineSource,
+    PlantLayout,
+    plant_layout,
+    resolve_layout,
+)
 from loader_model.plant.occupant import occupant_dynamics
 from loader_model.plant.valve_circuit import valve_drive
 
@@ -63,6 +68,7 @@ __all__ = [
     "EXOGENOUS_NAMES",
     "INPUT_NAMES",
     "OUTPUT_NAMES",
+    "SKID_STEER",
     "STATE_NAMES",
     "build_plant",
     "hydraulic_drive",
@@ -71,12 +77,11 @@ __all__ = [
     "plant_layout",
 ]
 
-_SKID_STEER = plant_layout(DEFAULT_MACHINE)
 #: The skid-steer's plant (any machine: :func:`plant_layout`).
-STATE_NAMES: tuple[str, ...] = _SKID_STEER.state_names
-INPUT_NAMES: tuple[str, ...] = _SKID_STEER.input_names
-EXOGENOUS_NAMES: tuple[str, ...] = _SKID_STEER.exogenous_names
-OUTPUT_NAMES: tuple[str, ...] = _SKID_STEER.output_names
+STATE_NAMES: tuple[str, ...] = SKID_STEER.state_names
+INPUT_NAMES: tuple[str, ...] = SKID_STEER.input_names
+EXOGENOUS_NAMES: tuple[str, ...] = SKID_STEER.exogenous_names
+OUTPUT_NAMES: tuple[str, ...] = SKID_STEER.output_names
 
 _SATURATION_BAND = 0.01  # C¹ saturations are exact below 99 % of their limit
 
@@ -84,7 +89,7 @@ _SATURATION_BAND = 0.01  # C¹ saturations are exact below 99 % of their limit
 def named_parameters(params: Any, layout: PlantLayout | None = None) -> dict[str, Any]:
     """The entries of a plant parameter vector by name (the layout's, default the skid-steer's
     :data:`~loader_model.plant.plant_parameters.PLANT_PARAMETER_NAMES`)."""
-    names = (layout or _SKID_STEER).parameter_names
+    names = (layout or SKID_STEER).parameter_names
     return {name: params[i] for i, name in enumerate(names)}
 
 
@@ -102,7 +107,7 @@ def hydraulic_drive(
     a valve circuit's drive has ``pump_flow`` the supply's flow and adds ``supply_pressure``,
     ``valve_a``, ``valve_b`` and ``check_b`` (:mod:`loader_model.plant.valve_circuit`).
     """
-    layout = layout or _SKID_STEER
+    layout = layout or SKID_STEER
     n_p, h = layout.n_coordinates, layout.index("p_A")
     p, pd = x[0:n_p], x[n_p : 2 * n_p]
     p_a, p_b, v_p, vd_p, v_acc = x[h], x[h + 1], x[h + 2], x[h + 3], x[h + 4]
@@ -180,22 +185,17 @@ def hydraulic_drive(
     }
 
 
-def build_plant(
-    symbol: type = ca.SX, machine: str = DEFAULT_MACHINE, circuit: str | None = None
-) -> ca.Function:
+def build_plant(symbol: type = ca.SX, layout: PlantLayout = SKID_STEER) -> ca.Function:
     """Build the plant Function ``plant(x, u, w, params) -> (xdot, y)`` (module docstring).
 
     Parameters
     ----------
     symbol : casadi.SX or casadi.MX
         Symbol type of the graph (SX: fast to evaluate and to JIT-compile; MX: compact).
-    machine : str
-        A machine of :func:`loader_model.machines.list_machines` (default the skid-steer); its
-        names and sizes: :func:`plant_layout`.
-    circuit : str, optional
-        ``"pump"`` or ``"valve"``: the lift circuit (default the machine description's).
+    layout : PlantLayout
+        The machine and its lift circuit (default the skid-steer's; any machine:
+        :func:`plant_layout`, another circuit: :func:`~loader_model.plant.layout.machine_layout`).
     """
-    layout = plant_layout(machine, circuit)
     info = layout.machine
     n_p, n_a, n_w = layout.n_coordinates, layout.n_anchors, len(info.road_names)
     x = symbol.sym("x", len(layout.state_names))
@@ -243,10 +243,11 @@ def build_plant(
 
 
 @cache
-def _plant_function(machine: str) -> ca.Function:
-    return build_plant(ca.SX, machine)
+def _plant_function(layout: PlantLayout) -> ca.Function:
+    return build_plant(ca.SX, layout)
 
 
-def plant_function(machine: str = DEFAULT_MACHINE) -> ca.Function:
-    """The SX plant Function of ``machine`` (name or description file), built once per process."""
-    return _plant_function(resolve_machine_name(machine))
+def plant_function(machine: MachineSource = SKID_STEER) -> ca.Function:
+    """The SX plant Function of ``machine`` (its :class:`PlantLayout`, or a name or description
+    file resolved once here), built once per process and machine."""
+    return _plant_function(resolve_layout(machine))

@@ -11,6 +11,11 @@ standing together: :func:`~loader_model.vehicle.statics.check_combination`),
 (tyre loads F_Ay, F_By and the sensor readings at rest). Whoever needs the plant (the road input,
 the controller settings and fixed point, the simulator) takes the :class:`PlantScenario` and
 reads these instead of rebuilding them.
+
+The scenario carries its machine resolved once, a :class:`~loader_model.plant.layout.PlantLayout`
+(description, generated functions, circuit, names and sizes): :func:`resolve_plant` and
+:meth:`PlantScenario.from_vector` take a machine name or description file and resolve it there;
+whatever takes the scenario reads :attr:`PlantScenario.layout` instead of looking the machine up.
 """
 
 from __future__ import annotations
@@ -21,9 +26,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
 from loader_model.plant.equilibrium import static_state
-from loader_model.plant.layout import PlantLayout, plant_layout
+from loader_model.plant.layout import SKID_STEER, MachineSource, PlantLayout, resolve_layout
 from loader_model.plant.plant import plant_function
 from loader_model.plant.plant_parameters import PlantOptions, plant_parameter_vector
 from loader_model.vehicle.statics import resolve_machine
@@ -70,9 +74,9 @@ class PlantScenario:
         The validated bucket load (None when built from a bare vector).
     options : PlantOptions or None
         The circuit switches (None when built from a bare vector: the vector's switch entries).
-    machine : str
-        The machine (:func:`loader_model.machines.list_machines`; default the skid-steer); its
-        names and sizes: :attr:`layout`. For another machine ``loader`` is its
+    layout : PlantLayout
+        The machine resolved once (default the skid-steer): its description, generated
+        functions, circuit, names and sizes. For another machine ``loader`` is its
         :class:`~loader_model.parameters.machine_files.MachineParameters` and ``load`` the
         name of its load case (None: the file's [model] values).
     """
@@ -84,11 +88,15 @@ class PlantScenario:
     loader: LoaderParameters | None = None
     load: BucketLoad | None = None
     options: PlantOptions | None = None
-    machine: str = DEFAULT_MACHINE
+    layout: PlantLayout = SKID_STEER
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "machine", resolve_machine_name(self.machine))
         layout = self.layout
+        if not isinstance(layout, PlantLayout):
+            raise TypeError(
+                f"layout must be a PlantLayout (loader_model.plant.layout.plant_layout); got "
+                f"{type(layout).__name__}"
+            )
         object.__setattr__(
             self, "params", _frozen(self.params, "params", len(layout.parameter_names))
         )
@@ -101,15 +109,9 @@ class PlantScenario:
             )
 
     @property
-    def layout(self) -> PlantLayout:
-        """Names and sizes of this machine's plant (:func:`~loader_model.plant.layout.
-        plant_layout`)."""
-        return plant_layout(self.machine)
-
-    @property
     def is_default_machine(self) -> bool:
         """True for the paper's skid-steer."""
-        return self.machine == DEFAULT_MACHINE
+        return self.layout.machine.is_default
 
     @classmethod
     def from_vector(
@@ -118,24 +120,26 @@ class PlantScenario:
         loader: LoaderParameters | MachineParameters | None = None,
         load: BucketLoad | str | None = None,
         options: PlantOptions | None = None,
-        machine: str = DEFAULT_MACHINE,
+        machine: MachineSource = SKID_STEER,
     ) -> PlantScenario:
         """The scenario of a parameter vector: its static equilibrium and outputs, computed once.
 
         ``loader``, ``load`` and ``options`` are recorded as given (the vector's sources, when
-        known); they are not checked against the vector.
+        known); they are not checked against the vector. ``machine``: its
+        :class:`~loader_model.plant.layout.PlantLayout`, or a name or description file resolved
+        once here (default the skid-steer).
         """
-        layout = plant_layout(resolve_machine_name(machine))
+        layout = resolve_layout(machine)
         vector = np.asarray(params, dtype=float).ravel()
         if vector.size != len(layout.parameter_names):
             raise ValueError(
                 f"params must have {len(layout.parameter_names)} values; got {vector.size}"
             )
-        x0, u0 = static_state(vector, layout.machine.name)
+        x0, u0 = static_state(vector, layout)
         w = np.zeros(len(layout.exogenous_names))
-        _, y = plant_function(layout.machine.name)(x0, u0, w, vector)
+        _, y = plant_function(layout)(x0, u0, w, vector)
         y0 = np.asarray(y, dtype=float).ravel()
-        return cls(vector, x0, u0, y0, loader, load, options, layout.machine.name)
+        return cls(vector, x0, u0, y0, loader, load, options, layout)
 
     def parameter(self, name: str) -> float:
         """The value of plant parameter ``name`` (one of ``PLANT_PARAMETER_NAMES``)."""
@@ -173,7 +177,7 @@ class PlantScenario:
         vector = self.params.copy()
         for name, value in options.switches().items():
             vector[self.layout.parameter_names.index(name)] = value
-        return PlantScenario.from_vector(vector, self.loader, self.load, options, self.machine)
+        return PlantScenario.from_vector(vector, self.loader, self.load, options, self.layout)
 
 
 def resolve_plant(
@@ -181,7 +185,7 @@ def resolve_plant(
     load: BucketLoad | str | Path = "empty",
     options: PlantOptions | None = None,
     *,
-    machine: str = DEFAULT_MACHINE,
+    machine: MachineSource = SKID_STEER,
 ) -> PlantScenario:
     """The plant of a loader, a bucket load and circuit switches, resolved once (module notes).
 
@@ -195,8 +199,9 @@ def resolve_plant(
         Circuit switches; default: pump, valves, leakage and friction on, load-holding valves
         open, accumulator shut, occupant on (``PlantOptions.for_controller`` gives a
         controller's circuit).
-    machine : str
-        A machine name or description file (default the skid-steer). For another machine,
+    machine : PlantLayout, str or pathlib.Path
+        The machine: resolved (:func:`~loader_model.plant.layout.plant_layout`), or a name or
+        description file resolved once here (default the skid-steer). For another machine,
         ``loader`` is its parameter file (a ``MachineParameters``, a path, or None for the
         shipped one) and ``load`` a load case of it (None or ``"full"``/``"empty"``, ...; the
         skid-steer's default ``"empty"`` is taken as given); the plant's pump, valves, friction,
@@ -217,15 +222,15 @@ def resolve_plant(
         options = PlantOptions()
     elif not isinstance(options, PlantOptions):
         raise TypeError(f"options must be a PlantOptions or None; got {type(options).__name__}")
-    name = resolve_machine_name(machine)
-    if name != DEFAULT_MACHINE:
+    layout = resolve_layout(machine)
+    if not layout.machine.is_default:
         from loader_model.parameters.machine_files import resolve_machine_parameters
         from loader_model.plant.machine_parameters import machine_plant_parameter_vector
 
-        values = resolve_machine_parameters(name, loader)  # type: ignore[arg-type]
+        values = resolve_machine_parameters(layout.machine, loader)  # type: ignore[arg-type]
         case = None if load is None else str(load)
-        params = machine_plant_parameter_vector(name, values, case, options)
-        return PlantScenario.from_vector(params, values, case, options, name)
+        params = machine_plant_parameter_vector(layout, values, case, options)
+        return PlantScenario.from_vector(params, values, case, options, layout)
     loader, load = resolve_machine(loader, load)
     params = plant_parameter_vector(loader, load, options, check=False)
-    return PlantScenario.from_vector(params, loader, load, options)
+    return PlantScenario.from_vector(params, loader, load, options, layout)

@@ -34,6 +34,7 @@ from loader_model.robustness.sampling import SampleSpec, sample_specs
 from loader_model.robustness.study import Study
 
 if TYPE_CHECKING:
+    from loader_model.plant.layout import PlantLayout
     from loader_model.plant.scenario import PlantScenario
 
 __all__ = ["Gains", "max_pole_real", "resolve_gains"]
@@ -46,24 +47,26 @@ def _row(gain: Any) -> tuple[float, ...]:
     return tuple(float(g) for g in np.asarray(gain, dtype=float).ravel())
 
 
-def _sample_design_parameters(spec: SampleSpec, machine: str, params_path: str | None) -> Any:
+def _sample_design_parameters(
+    spec: SampleSpec, layout: PlantLayout, params_path: str | None
+) -> Any:
     """The sample's plant vector (skid-steer) or resolved plant (another machine)."""
-    if machine == "skid_steer":
+    if layout.machine.is_default:
         from loader_model.robustness.sampling import sample_plant_vector
 
         return sample_plant_vector(spec)[0]
     from loader_model.robustness.machine_study import machine_sample_plant
 
-    return machine_sample_plant(spec, machine, params_path)
+    return machine_sample_plant(spec, layout, params_path)
 
 
 def _nominal_parameters(study: Study) -> dict[str, Any] | None:
     """None for the skid-steer (the shipped loader), else the machine's plant per study load."""
-    if study.machine == "skid_steer":
+    if study.layout.machine.is_default:
         return None
     from loader_model.plant.scenario import resolve_plant
 
-    return {load: resolve_plant(study.params, load, machine=study.machine) for load in study.loads}
+    return {load: resolve_plant(study.params, load, machine=study.layout) for load in study.loads}
 
 
 def robust_gain(study: Study) -> tuple[tuple[float, ...], list[SampleSpec]]:
@@ -79,7 +82,7 @@ def robust_gain(study: Study) -> tuple[tuple[float, ...], list[SampleSpec]]:
     plants = []
     for spec in specs:
         try:
-            params = _sample_design_parameters(spec, study.machine, study.params)
+            params = _sample_design_parameters(spec, study.layout, study.params)
         except ValueError:
             continue
         speed = spec.speed_kmh * spec.speed_factor

@@ -18,9 +18,9 @@ import difflib
 import math
 from typing import TYPE_CHECKING, Any
 
-from loader_model.machines import machine as machine_info
-
 if TYPE_CHECKING:
+    from loader_model.machines import MachineInfo
+    from loader_model.plant.layout import PlantLayout
     from loader_model.plant.scenario import PlantScenario
     from loader_model.robustness.sampling import SampleSpec
 
@@ -86,9 +86,9 @@ def study_params(value: Any, machine: str) -> str | None:
     return str(Path(value).resolve())
 
 
-def machine_parameter_field(path: str, machine: str) -> tuple[str, Any]:
+def machine_parameter_field(path: str, info: MachineInfo) -> tuple[str, Any]:
     """The SI unit and allowed :class:`~loader_model.parameters.fields.Range` of study parameter
-    ``path`` of ``machine`` (module notes).
+    ``path`` of the machine ``info`` (module notes).
 
     Raises
     ------
@@ -100,7 +100,6 @@ def machine_parameter_field(path: str, machine: str) -> tuple[str, Any]:
 
     if path in SENSOR_ERROR_FIELDS:
         return SENSOR_ERROR_FIELDS[path]
-    info = machine_info(machine)
     model = [n for n in info.parameter_names if n not in info.static_names]
     from loader_model.parameters.hydraulics import CylinderParameters, HydraulicParameters
     from loader_model.parameters.machine_files import HYDRAULIC_NAMES
@@ -132,14 +131,14 @@ def machine_parameter_field(path: str, machine: str) -> tuple[str, Any]:
 
 
 def machine_sample_parameters(
-    spec: SampleSpec, machine: str, params_path: str | None = None
+    spec: SampleSpec, info: MachineInfo, params_path: str | None = None
 ) -> Any:
     """The machine's :class:`~loader_model.parameters.machine_files.MachineParameters` (its
     flat file ``params_path``, default the shipped one) with the sample's values (module
     notes)."""
     from loader_model.parameters.machine_files import resolve_machine_parameters
 
-    params = resolve_machine_parameters(machine_info(machine).name, params_path)
+    params = resolve_machine_parameters(info, params_path)
     values = [(p, v) for p, v in spec.values if not p.startswith("sensors.")]
     model = {p.removeprefix("model."): v for p, v in values if p.startswith("model.")}
     cylinders = {p.removeprefix("cylinders."): v for p, v in values if p.startswith("cylinders.")}
@@ -160,9 +159,10 @@ def machine_sample_parameters(
 
 
 def machine_sample_plant(
-    spec: SampleSpec, machine: str, params_path: str | None = None
+    spec: SampleSpec, layout: PlantLayout, params_path: str | None = None
 ) -> PlantScenario:
-    """The sample's plant of ``machine`` (accumulator shut; its load case ``spec.load``).
+    """The sample's plant of the machine ``layout`` (accumulator shut; its load case
+    ``spec.load``).
 
     Raises
     ------
@@ -171,5 +171,5 @@ def machine_sample_plant(
     """
     from loader_model.plant.scenario import resolve_plant
 
-    params = machine_sample_parameters(spec, machine, params_path)
-    return resolve_plant(params, spec.load, machine=machine)
+    params = machine_sample_parameters(spec, layout.machine, params_path)
+    return resolve_plant(params, spec.load, machine=layout)

@@ -34,6 +34,7 @@ from loader_model.simulation.settling import COMMAND_AT_LIMIT
 from loader_model.simulation.simulator import course_input, simulate
 
 if TYPE_CHECKING:
+    from loader_model.plant.layout import PlantLayout
     from loader_model.plant.scenario import PlantScenario
 
 __all__ = ["AXES", "run_batch", "run_sample"]
@@ -46,14 +47,14 @@ _IDEAL = np.array([1.0] * 5 + [0.0] * 5)
 _HOLDING = ("baseline", "passive")
 
 
-def _hold_controller(machine: str = "skid_steer") -> Any:
+def _hold_controller(layout: PlantLayout) -> Any:
     """The baseline's constant command as its one setting, built once per process and machine
-    (one compiled period for every sampled plant)."""
+    ``layout`` (one compiled period for every sampled plant)."""
     from loader_model.simulation.controllers import hold_command_controller
 
-    key = "hold" if machine == "skid_steer" else f"hold:{machine}"
+    key = "hold" if layout.machine.is_default else ("hold", layout)
     if key not in _CONTROLLERS:
-        _CONTROLLERS[key] = hold_command_controller(machine)
+        _CONTROLLERS[key] = hold_command_controller(layout)
     return _CONTROLLERS[key]
 
 
@@ -105,7 +106,7 @@ _EMPTY = dict.fromkeys(
 
 def _pressure_norm(plant: PlantScenario) -> float:
     """‖p_A‖∞ of the controllers' normalisation: the load's (skid-steer) or the machine's."""
-    if plant.machine == "skid_steer":
+    if plant.is_default_machine:
         return float(plant.load.pressure_normalisation)
     from loader_model.plant.machine_parameters import pressure_norm
 
@@ -139,7 +140,7 @@ def _run(
 
     plant = plant.with_options((plant.options or PlantOptions()).with_controller(name))
     if name in _HOLDING:
-        scenario = closed_loop(plant, _hold_controller(plant.machine), [plant.u0], name=name)
+        scenario = closed_loop(plant, _hold_controller(plant.layout), [plant.u0], name=name)
     else:
         kind = "virtual-accumulator" if name == "virtual-accumulator" else "skyhook"
         settings = default_settings()
@@ -148,7 +149,7 @@ def _run(
         vector, state = plant_controller_setup(kind, plant, load[1], settings)
         if np.any(errors != _IDEAL):
             state = corrupted_fixed_point(kind, vector, plant, errors)
-        controller = sensor_controller(kind, plant.machine)
+        controller = sensor_controller(kind, plant.layout)
         scenario = Scenario(plant, controller, np.concatenate([vector, errors]), state, name)
     result = simulate(
         road, scenario, duration_s=study.duration_s, sensors=None if name in _HOLDING else sensors
@@ -186,7 +187,7 @@ def run_sample(study: Study, gains: Gains, spec: SampleSpec) -> list[dict[str, A
     errors = sensor_errors(dict(spec.values))
     noise = sensor_model(dict(spec.values), spec.road_seed)
     try:
-        plant = sample_plant(spec, study.machine, study.params)
+        plant = sample_plant(spec, study.layout, study.params)
         road = course_input(_course(study, spec), plant)
         setup_error = None
     except Exception as error:  # a failed sample never stops the study

@@ -20,6 +20,7 @@ import numpy as np
 from loader_model.robustness.study import Study
 
 if TYPE_CHECKING:
+    from loader_model.plant.layout import PlantLayout
     from loader_model.plant.scenario import PlantScenario
 
 __all__ = ["SampleSpec", "design_matrix", "sample_plant", "sample_plant_vector", "sample_specs"]
@@ -149,7 +150,7 @@ def sample_plant_vector(spec: SampleSpec) -> tuple[np.ndarray, Any]:
 
 
 def sample_plant(
-    spec: SampleSpec, machine: str = "skid_steer", params_path: str | None = None
+    spec: SampleSpec, layout: PlantLayout | None = None, params_path: str | None = None
 ) -> PlantScenario:
     """The sample's plant (accumulator shut), resolved once: the vector of
     :func:`sample_plant_vector` with its static equilibrium
@@ -159,7 +160,7 @@ def sample_plant(
     ----------
     spec : SampleSpec
         The sample.
-    machine : str
+    layout : PlantLayout, optional
         The described machine (default the skid-steer); another machine's plant comes from its
         flat parameter file
         (:func:`~loader_model.robustness.machine_study.machine_sample_plant`).
@@ -173,8 +174,8 @@ def sample_plant(
     """
     from loader_model.plant.scenario import resolve_plant
 
-    if machine != "skid_steer":
+    if layout is not None and not layout.machine.is_default:
         from loader_model.robustness.machine_study import machine_sample_plant
 
-        return machine_sample_plant(spec, machine, params_path)
+        return machine_sample_plant(spec, layout, params_path)
     return resolve_plant(*_sample_sets(spec))

@@ -24,6 +24,7 @@ import numpy as np
 from loader_model.parameters.fields import Range
 
 if TYPE_CHECKING:
+    from loader_model.plant.layout import PlantLayout
     from loader_model.plant.scenario import PlantScenario
 
 __all__ = [
@@ -75,22 +76,21 @@ def sensor_model(values: Mapping[str, float], seed: int) -> Any:
     return SensorModel(noise_std=noise, seed=int(seed)) if any(noise) else None
 
 
-def sensor_controller(kind: str, machine: str | None = None) -> Any:
+def sensor_controller(kind: str, layout: PlantLayout | None = None) -> Any:
     """``controller(z, y, [settings; errors]) -> (z_next, u)``: ride controller ``kind`` on
-    corrupted readings (module notes), built once per process and machine (None or the
-    skid-steer: the paper's plant; another: its plant layout's outputs)."""
+    corrupted readings (module notes), built once per process and machine ``layout`` (None or
+    the skid-steer: the paper's plant; another: its plant layout's outputs)."""
     import casadi as ca
 
     from loader_model.control.sensors import SENSOR_NAMES
-    from loader_model.plant.layout import plant_layout
     from loader_model.plant.plant import OUTPUT_NAMES
     from loader_model.simulation.ride_control import plant_controller
 
-    machine = None if machine in (None, "skid_steer") else machine
-    key = kind if machine is None else (kind, machine)
+    layout = None if layout is None or layout.machine.is_default else layout
+    key = kind if layout is None else (kind, layout)
     if key not in _CONTROLLERS:
-        inner = plant_controller(kind, machine)
-        names = OUTPUT_NAMES if machine is None else plant_layout(machine).output_names
+        inner = plant_controller(kind, layout)
+        names = OUTPUT_NAMES if layout is None else layout.output_names
         z = ca.SX.sym("z", inner.size1_in(0))
         y = ca.SX.sym("y", inner.size1_in(1))
         settings = ca.SX.sym("settings", inner.size1_in(2) + 2 * len(SENSOR_NAMES))
@@ -121,7 +121,7 @@ def corrupted_fixed_point(
     from loader_model.control.sensors import sensor_signals
     from loader_model.simulation.ride_control import RIDE_CONTROLLERS
 
-    readings = sensor_signals(plant.y0, plant.machine)
+    readings = sensor_signals(plant.y0, plant.layout)
     readings = errors[:5] * readings + errors[5:]
     fixed = linear_controller(RIDE_CONTROLLERS[kind], vector, readings)
     return np.asarray(fixed.operating_state, dtype=float).ravel()

@@ -15,9 +15,9 @@ import difflib
 import math
 import tomllib
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from loader_model.robustness.distributions import Distribution, parse_distribution
 from loader_model.robustness.machine_study import (
@@ -25,6 +25,9 @@ from loader_model.robustness.machine_study import (
     study_machine,
     study_params,
 )
+
+if TYPE_CHECKING:
+    from loader_model.plant.layout import PlantLayout
 
 __all__ = [
     "COMPARED_CONTROLLERS",
@@ -94,6 +97,10 @@ class Study:
         ``[study] params``: another machine's flat parameter file, resolved against the working
         folder (default the machine's shipped file; required for a machine from a description
         file, which ships none).
+    layout : PlantLayout
+        The machine resolved once when the study is read (a worker process that unpickles the
+        study resolves it again through the verified machine registry); default: resolved from
+        ``machine``.
     """
 
     name: str
@@ -115,6 +122,13 @@ class Study:
     parameters: tuple[tuple[str, Distribution], ...]
     machine: str = "skid_steer"
     params: str | None = None
+    layout: PlantLayout = field(default=None, compare=False, repr=False)  # type: ignore[assignment]
+
+    def __post_init__(self) -> None:
+        if self.layout is None:
+            from loader_model.plant.layout import plant_layout
+
+            object.__setattr__(self, "layout", plant_layout(self.machine))
 
     @property
     def controllers(self) -> tuple[str, ...]:
@@ -265,7 +279,10 @@ def _build(data: dict[str, Any], load_cases: tuple[str, ...], course_speeds: tup
     study = _table(data, "study")
     keys = ("name", "seed", "samples", "sampling", "duration_s", "batch_size", "machine", "params")
     _keys(study, keys, "study.")
+    from loader_model.plant.layout import plant_layout
+
     machine = study_machine(study.get("machine", "skid_steer"))
+    layout = plant_layout(machine)
     params = study_params(study.get("params"), machine)
     if "samples" not in study:
         raise ValueError("study.samples: missing key (the number of samples, >= 1)")
@@ -300,7 +317,7 @@ def _build(data: dict[str, Any], load_cases: tuple[str, ...], course_speeds: tup
         if machine == "skid_steer":
             unit, allowed = parameter_field(path)
         else:
-            unit, allowed = machine_parameter_field(path, machine)
+            unit, allowed = machine_parameter_field(path, layout.machine)
         varied.append((path, parse_distribution(spec, f"parameters.{path}", unit, allowed)))
     return Study(
         name=str(study.get("name", "robustness study")),
@@ -332,6 +349,7 @@ def _build(data: dict[str, Any], load_cases: tuple[str, ...], course_speeds: tup
         parameters=tuple(varied),
         machine=machine,
         params=params,
+        layout=layout,
     )
 
 

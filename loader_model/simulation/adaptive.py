@@ -35,8 +35,7 @@ import casadi as ca
 import numpy as np
 
 from loader_model.control.sensors import quantise
-from loader_model.machines import DEFAULT_MACHINE
-from loader_model.plant.layout import plant_layout
+from loader_model.plant.layout import SKID_STEER, PlantLayout
 from loader_model.plant.plant import plant_function
 from loader_model.simulation.stepper import _GAMMA, lu_solver, step_error_scales
 
@@ -58,20 +57,19 @@ DECREASE_MARGIN = 8.0
 
 
 @functools.cache
-def counted_steps(period_s: float, substeps: int, machine: str = DEFAULT_MACHINE) -> ca.Function:
+def counted_steps(period_s: float, substeps: int, layout: PlantLayout = SKID_STEER) -> ca.Function:
     """``steps(x, u, w0, w1, params) -> (x_next, error)``: ``substeps`` ROS2 steps of the plant
     over ``period_s`` with u held and the exogenous input linear from w0 to w1, all with the
     Jacobian of the period's start and so one factorisation of W (module notes), and their
     largest error estimate (SX)."""
-    plant = plant_function(machine)
-    layout = plant_layout(machine)
+    plant = plant_function(layout)
     nx, n_w = len(layout.state_names), len(layout.exogenous_names)
     x = ca.SX.sym("x", nx)
     u = ca.SX.sym("u")
     w0, w1 = ca.SX.sym("w0", n_w), ca.SX.sym("w1", n_w)
     params = ca.SX.sym("params", plant.size1_in(3))
     step = period_s / substeps
-    scales = ca.DM(step_error_scales(machine))
+    scales = ca.DM(step_error_scales(layout))
     rate = plant(x, u, w0, params)[0]
     solve = lu_solver(ca.SX.eye(nx) - _GAMMA * step * ca.jacobian(rate, x))
     state, error = x, None
@@ -94,10 +92,9 @@ def counted_steps(period_s: float, substeps: int, machine: str = DEFAULT_MACHINE
     )
 
 
-def _controller_step(controller: ca.Function, machine: str) -> ca.Function:
+def _controller_step(controller: ca.Function, layout: PlantLayout) -> ca.Function:
     """``head(x, z, u_previous, w0, params, settings, y_error, y_step) -> (y, z_next, u)``."""
-    layout = plant_layout(machine)
-    plant = plant_function(machine)
+    plant = plant_function(layout)
     nx, nz = len(layout.state_names), controller.size1_in(0)
     n_y = len(layout.output_names)
     x, z, u_previous = ca.SX.sym("x", nx), ca.SX.sym("z", nz), ca.SX.sym("u_previous")
@@ -117,7 +114,7 @@ def _controller_step(controller: ca.Function, machine: str) -> ca.Function:
 def adaptive_period_function(
     controller: ca.Function,
     period_s: float = 1e-3,
-    machine: str = DEFAULT_MACHINE,
+    layout: PlantLayout = SKID_STEER,
     tolerance: float | None = None,
 ) -> ca.Function:
     """One controller period with error-controlled substeps (module notes), as an MX Function.
@@ -128,10 +125,9 @@ def adaptive_period_function(
     substeps' estimate; ``tolerance`` default :data:`STEP_TOLERANCE`.
     """
     tolerance = STEP_TOLERANCE if tolerance is None else float(tolerance)
-    layout = plant_layout(machine)
     nx, nz = len(layout.state_names), controller.size1_in(0)
     n_w, n_y = len(layout.exogenous_names), len(layout.output_names)
-    plant = plant_function(machine)
+    plant = plant_function(layout)
     carry = ca.MX.sym("carry", nx + nz + 2)
     x, z = carry[:nx], carry[nx : nx + nz]
     level, u_previous = carry[nx + nz], carry[nx + nz + 1]
@@ -139,10 +135,10 @@ def adaptive_period_function(
     params = ca.MX.sym("params", plant.size1_in(3))
     settings = ca.MX.sym("settings", controller.size1_in(2))
     y_error, y_step = ca.MX.sym("y_error", n_y), ca.MX.sym("y_step", n_y)
-    y, z_next, u = _controller_step(controller, machine)(
+    y, z_next, u = _controller_step(controller, layout)(
         x, z, u_previous, w0, params, settings, y_error, y_step
     )
-    branches = [counted_steps(period_s, n, machine) for n in SUBSTEP_COUNTS]
+    branches = [counted_steps(period_s, n, layout) for n in SUBSTEP_COUNTS]
     attempt = ca.Function.conditional("ros2_counted", branches[:-1], branches[-1])
     retry = _retry_function(attempt, nx, n_w, plant.size1_in(3))
     top = float(len(SUBSTEP_COUNTS) - 1)

@@ -15,9 +15,7 @@ from __future__ import annotations
 
 import casadi as ca
 
-from loader_model.machines import DEFAULT_MACHINE
-from loader_model.plant.layout import plant_layout
-from loader_model.plant.plant import OUTPUT_NAMES
+from loader_model.plant.layout import SKID_STEER, PlantLayout
 
 __all__ = ["CONTROLLER_PERIOD_S", "check_controller", "hold_command_controller", "hold_controller"]
 
@@ -25,11 +23,11 @@ __all__ = ["CONTROLLER_PERIOD_S", "check_controller", "hold_command_controller",
 CONTROLLER_PERIOD_S = 1e-3
 
 
-def _outputs(machine: str) -> int:
-    return len(plant_layout(machine).output_names)
+def _outputs(layout: PlantLayout) -> int:
+    return len(layout.output_names)
 
 
-def hold_controller(u0: float, machine: str = DEFAULT_MACHINE) -> ca.Function:
+def hold_controller(u0: float, layout: PlantLayout = SKID_STEER) -> ca.Function:
     """The baseline controller: the pump holds the boom at the static command ``u0``.
 
     Parameters
@@ -44,7 +42,7 @@ def hold_controller(u0: float, machine: str = DEFAULT_MACHINE) -> ca.Function:
         ``hold(z, y, settings) -> (z_next, u)`` with empty z and settings, u = u0.
     """
     z = ca.SX.sym("z", 0)
-    y = ca.SX.sym("y", _outputs(machine))
+    y = ca.SX.sym("y", _outputs(layout))
     settings = ca.SX.sym("settings", 0)
     return ca.Function(
         "hold",
@@ -55,7 +53,7 @@ def hold_controller(u0: float, machine: str = DEFAULT_MACHINE) -> ca.Function:
     )
 
 
-def hold_command_controller(machine: str = DEFAULT_MACHINE) -> ca.Function:
+def hold_command_controller(layout: PlantLayout = SKID_STEER) -> ca.Function:
     """The baseline controller with the held command as its one setting.
 
     ``hold(z, y, settings) -> (z_next, u)`` with empty z and u = settings[0] (m³/rev). The same
@@ -63,14 +61,14 @@ def hold_command_controller(machine: str = DEFAULT_MACHINE) -> ca.Function:
     command (:func:`hold_controller` builds the command into the Function).
     """
     z = ca.SX.sym("z", 0)
-    y = ca.SX.sym("y", _outputs(machine))
+    y = ca.SX.sym("y", _outputs(layout))
     settings = ca.SX.sym("settings", 1)
     return ca.Function(
         "hold", [z, y, settings], [z, settings[0]], ["z", "y", "settings"], ["z_next", "u"]
     )
 
 
-def check_controller(controller: object, machine: str = DEFAULT_MACHINE) -> ca.Function:
+def check_controller(controller: object, layout: PlantLayout = SKID_STEER) -> ca.Function:
     """Check that ``controller`` has the controller interface (module notes); return it.
 
     Raises
@@ -90,7 +88,7 @@ def check_controller(controller: object, machine: str = DEFAULT_MACHINE) -> ca.F
         if controller.size2_in(index) > 1:
             raise ValueError(f"controller input {index} must be a column vector")
     nz, ny = controller.size1_in(0), controller.size1_in(1)
-    names = OUTPUT_NAMES if machine == DEFAULT_MACHINE else plant_layout(machine).output_names
+    names = layout.output_names
     if ny != len(names):
         raise ValueError(
             f"controller {controller.name()!r} takes y of size {ny}; the plant has "

@@ -29,10 +29,9 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
-from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
 from loader_model.plant.energy import INPUT_POWER_NAMES, energy_function, energy_names
 from loader_model.plant.equilibrium import static_state
-from loader_model.plant.layout import PlantLayout, plant_layout
+from loader_model.plant.layout import SKID_STEER, MachineSource, PlantLayout, resolve_layout
 from loader_model.plant.plant import plant_function
 from loader_model.simulation.controllers import CONTROLLER_PERIOD_S
 from loader_model.simulation.result import SimulationResult
@@ -95,10 +94,10 @@ def _balance(
     start: np.ndarray,
     end: np.ndarray,
     integrals: np.ndarray,
-    machine: str = DEFAULT_MACHINE,
+    layout: PlantLayout = SKID_STEER,
 ) -> EnergyBalance:
     n_in = len(INPUT_POWER_NAMES)
-    stores, losses = energy_names(machine)
+    stores, losses = energy_names(layout)
     return EnergyBalance(
         duration_s,
         method,
@@ -114,30 +113,29 @@ def _n_road(layout: PlantLayout) -> int:
 
 
 def _stored(
-    x: np.ndarray, u: float, w: np.ndarray, params: np.ndarray, machine: str = DEFAULT_MACHINE
+    x: np.ndarray, u: float, w: np.ndarray, params: np.ndarray, layout: PlantLayout = SKID_STEER
 ) -> np.ndarray:
-    still = np.zeros(_n_road(plant_layout(machine)))
-    return np.asarray(energy_function(machine)(x, u, w, still, params)[1], dtype=float).ravel()
+    still = np.zeros(_n_road(layout))
+    return np.asarray(energy_function(layout)(x, u, w, still, params)[1], dtype=float).ravel()
 
 
-def _machine_params(params: Sequence[float] | np.ndarray, machine: str) -> tuple[str, np.ndarray]:
-    """The machine's name and ``params`` as a vector of its plant's size."""
-    name = resolve_machine_name(machine)
-    size = len(plant_layout(name).parameter_names)
+def _machine_params(params: Sequence[float] | np.ndarray, layout: PlantLayout) -> np.ndarray:
+    """``params`` as a vector of the size of the plant of the machine ``layout``."""
+    size = len(layout.parameter_names)
     vector = np.asarray(params, dtype=float).ravel()
     if vector.size != size:
         raise ValueError(
-            f"params must have the {size} plant parameters of machine {name!r}; got {vector.size}"
+            f"params must have the {size} plant parameters of machine {layout.name!r}; got "
+            f"{vector.size}"
         )
-    return name, vector
+    return vector
 
 
 def _period_integrator(
-    period_s: float, npar: int, rtol: float, atol: float, machine: str = DEFAULT_MACHINE
+    period_s: float, npar: int, rtol: float, atol: float, layout: PlantLayout = SKID_STEER
 ) -> ca.Function:
-    layout = plant_layout(machine)
     nw, nx, n_road = len(layout.exogenous_names), len(layout.state_names), _n_road(layout)
-    losses_named = energy_names(machine)[1]
+    losses_named = energy_names(layout)[1]
     state = ca.SX.sym("state", nx + len(INPUT_POWER_NAMES) + len(losses_named))
     t = ca.SX.sym("t")
     p = ca.SX.sym("p", 1 + 2 * nw + npar)
@@ -145,8 +143,8 @@ def _period_integrator(
     w = w0 + (w1 - w0) * (t / period_s)
     road_velocity = (w1[0:n_road] - w0[0:n_road]) / period_s
     x = state[:nx]
-    _, _, inputs, losses, _ = energy_function(machine)(x, u, w, road_velocity, params)
-    ode = ca.vertcat(plant_function(machine)(x, u, w, params)[0], inputs, losses)
+    _, _, inputs, losses, _ = energy_function(layout)(x, u, w, road_velocity, params)
+    ode = ca.vertcat(plant_function(layout)(x, u, w, params)[0], inputs, losses)
     options = {"reltol": rtol, "abstol": atol, "max_num_steps": 100_000}
     dae = {"x": state, "t": t, "p": p, "ode": ode}
     return ca.integrator("energy_period", "cvodes", dae, 0.0, period_s, options)
@@ -160,7 +158,7 @@ def reference_energy_balance(
     period_s: float = CONTROLLER_PERIOD_S,
     rtol: float = 1e-10,
     atol: float = 1e-12,
-    machine: str = DEFAULT_MACHINE,
+    machine: MachineSource = SKID_STEER,
 ) -> EnergyBalance:
     """Balance of the hold run over ``road`` by CVODES with the integrals as states.
 
@@ -176,8 +174,9 @@ def reference_energy_balance(
         Period of the road's linear interpolation (the controller's), s.
     rtol, atol : float
         CVODES tolerances (as :func:`~loader_model.simulation.reference.reference_simulation`).
-    machine : str
-        A machine name or description file (default the skid-steer); ``params`` is its plant's.
+    machine : PlantLayout, str or pathlib.Path
+        The machine resolved (:func:`~loader_model.plant.layout.plant_layout`), or a name or
+        description file resolved once here (default the skid-steer); ``params`` is its plant's.
 
     Raises
     ------
@@ -186,13 +185,14 @@ def reference_energy_balance(
     SimulationError
         If CVODES fails in a period.
     """
-    name, params = _machine_params(params, machine)
-    x, u = static_state(params, name)
+    layout = resolve_layout(machine)
+    params = _machine_params(params, layout)
+    x, u = static_state(params, layout)
     total_s = road.duration_s if duration_s is None else float(duration_s)
     count = int(np.floor(total_s / period_s + 1e-9))
     exogenous = exogenous_table(road, np.arange(count + 1) * period_s)
-    integrator = _period_integrator(period_s, params.size, rtol, atol, name)
-    n_losses = len(energy_names(name)[1])
+    integrator = _period_integrator(period_s, params.size, rtol, atol, layout)
+    n_losses = len(energy_names(layout)[1])
     state = np.concatenate([x, np.zeros(len(INPUT_POWER_NAMES) + n_losses)])
     for k in range(count):
         parameters = np.concatenate([[u], exogenous[k], exogenous[k + 1], params])
@@ -202,10 +202,10 @@ def reference_energy_balance(
             raise SimulationError(
                 f"CVODES failed in the period starting at t = {k * period_s:.4f} s ({error})"
             ) from None
-    nx = len(plant_layout(name).state_names)
-    start = _stored(x, u, exogenous[0], params, name)
-    end = _stored(state[:nx], u, exogenous[count], params, name)
-    return _balance(count * period_s, f"CVODES rtol {rtol:g}", start, end, state[nx:], name)
+    nx = len(layout.state_names)
+    start = _stored(x, u, exogenous[0], params, layout)
+    end = _stored(state[:nx], u, exogenous[count], params, layout)
+    return _balance(count * period_s, f"CVODES rtol {rtol:g}", start, end, state[nx:], layout)
 
 
 def simulated_energy_balance(
@@ -213,7 +213,7 @@ def simulated_energy_balance(
     road: RoadInput,
     params: Sequence[float] | np.ndarray,
     *,
-    machine: str = DEFAULT_MACHINE,
+    machine: MachineSource = SKID_STEER,
 ) -> EnergyBalance:
     """Balance of a :func:`~loader_model.simulation.simulator.simulate` run, trapezoid over its
     rows and the final state (module notes), with the disturbance the run recorded.
@@ -226,16 +226,17 @@ def simulated_energy_balance(
         The road table it ran on.
     params : array_like
         Its plant parameter vector.
-    machine : str
-        A machine name or description file (default the skid-steer).
+    machine : PlantLayout, str or pathlib.Path
+        The machine resolved (:func:`~loader_model.plant.layout.plant_layout`), or a name or
+        description file resolved once here (default the skid-steer).
 
     Raises
     ------
     ValueError
         If ``params`` does not have the machine's number of parameters.
     """
-    name, params = _machine_params(params, machine)
-    layout = plant_layout(name)
+    layout = resolve_layout(machine)
+    params = _machine_params(params, layout)
     n_road = _n_road(layout)
     time_s = np.append(result.time_s, 2 * result.time_s[-1] - result.time_s[-2])
     states = np.column_stack([result[state] for state in layout.state_names])
@@ -245,7 +246,7 @@ def simulated_energy_balance(
     recorded = np.column_stack([result[force] for force in forces])
     exogenous = exogenous_table(road, time_s, np.vstack([recorded, recorded[-1:]]))
     count = time_s.size
-    mapped = energy_function(name).map(count)
+    mapped = energy_function(layout).map(count)
     _, parts, inputs, losses, elastic = (
         np.asarray(v, dtype=float)
         for v in mapped(states.T, commands, exogenous.T, np.zeros((n_road, count)), params)
@@ -256,4 +257,4 @@ def simulated_energy_balance(
     displacement = np.diff(exogenous[:, 0:n_road], axis=0).T
     integrals[0] += ((elastic[:, 1:] + elastic[:, :-1]) / 2 * displacement).sum()
     duration = float(time_s[-1] - time_s[0])
-    return _balance(duration, "ROS2 rows, trapezoid", parts[:, 0], parts[:, -1], integrals, name)
+    return _balance(duration, "ROS2 rows, trapezoid", parts[:, 0], parts[:, -1], integrals, layout)

@@ -46,7 +46,7 @@ import casadi as ca
 import numpy as np
 
 from loader_model.control.sensors import quantise
-from loader_model.plant.layout import plant_layout
+from loader_model.plant.layout import PlantLayout
 from loader_model.plant.plant import plant_function
 from loader_model.simulation import refinement
 from loader_model.simulation.compiled import CompilationError, compiled_function
@@ -60,7 +60,11 @@ FIXED_SUBSTEPS = 4
 
 @functools.cache
 def sensitivity_period(
-    controller: ca.Function, period_s: float, substeps: int, machine: str, gains: tuple[int, ...]
+    controller: ca.Function,
+    period_s: float,
+    substeps: int,
+    layout: PlantLayout,
+    gains: tuple[int, ...],
 ) -> ca.Function:
     """The simulator's period with the carry's sensitivities to ``gains`` (indices into the
     settings vector) appended to the carry (module notes).
@@ -69,8 +73,7 @@ def sensitivity_period(
     step_error)`` in the simulator's signature, where carry = (x, z, u_previous, vec(S)) and y
     = (y, vec(∂y/∂K)), so that it rolls and compiles as the simulator's does.
     """
-    layout = plant_layout(machine)
-    plant = plant_function(machine)
+    plant = plant_function(layout)
     nx, nz = len(layout.state_names), controller.size1_in(0)
     ny, nw = len(layout.output_names), len(layout.exogenous_names)
     ncarry, m = nx + nz + 1, len(gains)
@@ -101,7 +104,7 @@ def sensitivity_period(
         params,
         period_s,
         substeps,
-        error_scales=step_error_scales(machine),
+        error_scales=step_error_scales(layout),
         seed=ca.vertcat(sens[:nx, :], du),
     )
     carry_next = ca.vertcat(state, z_next, u, ca.vec(ca.vertcat(dstate, dzu)))
@@ -118,12 +121,16 @@ def sensitivity_period(
 
 @functools.cache
 def _compiled(
-    controller: ca.Function, period_s: float, substeps: int, machine: str, gains: tuple[int, ...]
+    controller: ca.Function,
+    period_s: float,
+    substeps: int,
+    layout: PlantLayout,
+    gains: tuple[int, ...],
 ) -> ca.Function:
-    period = sensitivity_period(controller, period_s, substeps, machine, gains)
+    period = sensitivity_period(controller, period_s, substeps, layout, gains)
     try:
         return compiled_function(period)
-    except CompilationError:  # no working C compiler: CasADi's virtual machine
+    except CompilationError:  # no working C compiler: CasADi's virtual layout
         return period
 
 
@@ -205,7 +212,7 @@ def gain_gradient(
     # count would be a jump in the cost (the simulator's default is fixed too)
     period_s, substeps = CONTROLLER_PERIOD_S, DEFAULT_SUBSTEPS or FIXED_SUBSTEPS
     plant, controller = scenario.plant, scenario.controller
-    layout, machine = plant.layout, plant.machine
+    layout = plant.layout
     nx, nz = len(layout.state_names), controller.size1_in(0)
     ny, ncarry, m = len(layout.output_names), nx + nz + 1, len(gains)
     total_s = road.duration_s if duration_s is None else float(duration_s)
@@ -214,9 +221,9 @@ def gain_gradient(
     exogenous = exogenous_table(road, time_s, None)
     y_errors, y_steps = _sensor_errors(sensors, count, layout.output_names)
     period = (
-        _compiled(controller, period_s, substeps, machine, tuple(gains))
+        _compiled(controller, period_s, substeps, layout, tuple(gains))
         if jit
-        else sensitivity_period(controller, period_s, substeps, machine, tuple(gains))
+        else sensitivity_period(controller, period_s, substeps, layout, tuple(gains))
     )
     chunk = min(int(chunk_periods), count)
     roll = rolled_period(period, chunk)
@@ -247,7 +254,7 @@ def gain_gradient(
             size, index = int(failed[0]) + 1, start + int(failed[0])
             before = carry if failed[0] == 0 else block[:, failed[0] - 1]
             fine = refinement.refine_period(
-                period_s, substeps, machine, before[:ncarry], block[:ncarry, failed[0]],
+                period_s, substeps, layout, before[:ncarry], block[:ncarry, failed[0]],
                 exogenous[index], exogenous[index + 1], scenario.params,
             )  # fmt: skip
             block[:ncarry, failed[0]] = fine

@@ -13,6 +13,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from loader_model.plant.layout import SKID_STEER, PlantLayout
+
 __all__ = ["COMPARED_CONTROLLERS", "ComparisonRow", "compare_controllers", "format_comparison"]
 
 #: The controllers compared, in the order of the rows.
@@ -53,7 +55,7 @@ def _a_total(scenario: Any, course: Any, substeps: int | None) -> float:
 
 
 def compare_controllers(
-    machine: str = "skid_steer",
+    layout: PlantLayout = SKID_STEER,
     params: Any = None,
     load: str | None = "empty",
     *,
@@ -66,8 +68,8 @@ def compare_controllers(
 
     Parameters
     ----------
-    machine : str
-        A machine name or description file.
+    layout : PlantLayout
+        The machine resolved (:func:`~loader_model.plant.layout.plant_layout`).
     params, load
         Its parameter file (None: the shipped one) and load case
         (:func:`~loader_model.plant.scenario.resolve_plant`).
@@ -92,7 +94,7 @@ def compare_controllers(
     values: list[tuple[str, float]] = []
     for name in COMPARED_CONTROLLERS:
         given = settings if name == "skyhook" else None
-        scenario = resolve_scenario(params, load, controller=name, settings=given, machine=machine)
+        scenario = resolve_scenario(params, load, controller=name, settings=given, machine=layout)
         label = f"{name} (designed)" if given is not None else name
         values.append((label, _a_total(scenario, course, substeps)))
     base = values[0][1]

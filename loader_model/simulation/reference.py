@@ -15,9 +15,8 @@ from collections.abc import Sequence
 import casadi as ca
 import numpy as np
 
-from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
 from loader_model.plant.equilibrium import static_state
-from loader_model.plant.layout import plant_layout
+from loader_model.plant.layout import SKID_STEER, MachineSource, PlantLayout, resolve_layout
 from loader_model.plant.plant import plant_function
 from loader_model.simulation.controllers import (
     CONTROLLER_PERIOD_S,
@@ -31,10 +30,9 @@ __all__ = ["reference_simulation"]
 
 
 def _period_integrator(
-    period_s: float, npar: int, rtol: float, atol: float, machine: str = DEFAULT_MACHINE
+    period_s: float, npar: int, rtol: float, atol: float, layout: PlantLayout = SKID_STEER
 ) -> ca.Function:
-    layout = plant_layout(machine)
-    plant = plant_function(machine)
+    plant = plant_function(layout)
     nw = len(layout.exogenous_names)
     x = ca.SX.sym("x", len(layout.state_names))
     t = ca.SX.sym("t")
@@ -57,7 +55,7 @@ def reference_simulation(
     period_s: float = CONTROLLER_PERIOD_S,
     rtol: float = 1e-10,
     atol: float = 1e-12,
-    machine: str = DEFAULT_MACHINE,
+    machine: MachineSource = SKID_STEER,
 ) -> dict[str, np.ndarray]:
     """Reference run (module notes); returns ``time``, ``x`` (N, n_x), ``y`` (N, n_y), ``u`` (N,).
 
@@ -83,8 +81,9 @@ def reference_simulation(
         The controller's period, s.
     rtol, atol : float
         CVODES tolerances.
-    machine : str
-        A machine name or description file (default the skid-steer).
+    machine : PlantLayout, str or pathlib.Path
+        The machine resolved (:func:`~loader_model.plant.layout.plant_layout`), or a name or
+        description file resolved once here (default the skid-steer).
 
     Raises
     ------
@@ -93,19 +92,18 @@ def reference_simulation(
     SimulationError
         If CVODES fails in a period (naming its start time and the state there).
     """
-    name = resolve_machine_name(machine)
-    layout = plant_layout(name)
+    layout = resolve_layout(machine)
     params = np.asarray(params, dtype=float).ravel()
     if params.size != len(layout.parameter_names):
         raise ValueError(
             f"params must have the {len(layout.parameter_names)} plant parameters of machine "
-            f"{name!r}; got {params.size}"
+            f"{layout.name!r}; got {params.size}"
         )
-    x, u_previous = static_state(params, name)
+    x, u_previous = static_state(params, layout)
     if controller is None:
-        controller, settings = hold_command_controller(name), (u_previous,)
-    controller = check_controller(controller, name)
-    plant = plant_function(name)
+        controller, settings = hold_command_controller(layout), (u_previous,)
+    controller = check_controller(controller, layout)
+    plant = plant_function(layout)
     z = (
         np.zeros(controller.size1_in(0))
         if controller_state is None
@@ -116,7 +114,7 @@ def reference_simulation(
     count = int(np.floor(total_s / period_s + 1e-9))
     time_s = np.arange(count + 1) * period_s
     exogenous = exogenous_table(road, time_s)
-    integrator = _period_integrator(period_s, params.size, rtol, atol, name)
+    integrator = _period_integrator(period_s, params.size, rtol, atol, layout)
     states = np.empty((count, len(layout.state_names)))
     outputs = np.empty((count, len(layout.output_names)))
     commands = np.empty(count)

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from loader_model.plant.layout import PlantLayout
 from loader_model.simulation.stepper import plant_steps
 
 __all__ = ["PART_SUBSTEPS", "REFINEMENT", "STEP_ERROR_LIMIT", "refine_period"]
@@ -33,7 +34,7 @@ PART_SUBSTEPS = 4
 def refine_period(
     period_s: float,
     substeps: int,
-    machine: str,
+    layout: PlantLayout,
     carry: np.ndarray,
     coarse_next: np.ndarray,
     w0: np.ndarray,
@@ -49,7 +50,7 @@ def refine_period(
     the period (the carry's last entry), is the coarse period's ``coarse_next`` (the carry it
     returned)."""
     parts = REFINEMENT * max(1, substeps // PART_SUBSTEPS)
-    steps = plant_steps(period_s / parts, min(substeps, PART_SUBSTEPS), machine)
+    steps = plant_steps(period_s / parts, min(substeps, PART_SUBSTEPS), layout)
     nx = steps.size1_in(0)
     state, command = carry[:nx], coarse_next[-1]
     for part in range(parts):

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 import casadi as ca
 import numpy as np
 
+from loader_model.plant.layout import PlantLayout
 from loader_model.plant.plant import OUTPUT_NAMES
 
 if TYPE_CHECKING:
@@ -31,18 +32,17 @@ RIDE_CONTROLLERS = {
 }
 
 
-def plant_controller(name: str, machine: str | None = None) -> ca.Function:
+def plant_controller(name: str, layout: PlantLayout | None = None) -> ca.Function:
     """``controller(z, y, settings) -> (z_next, u)`` of ride controller ``name`` on the plant's
     output vector ``y`` (order :data:`~loader_model.plant.plant.OUTPUT_NAMES`, or that of
-    ``machine``'s plant: the sensors by name)."""
+    the plant of the machine ``layout``: the sensors by name)."""
     from loader_model.control.controllers import controller_function
     from loader_model.control.sensors import SENSOR_NAMES
-    from loader_model.plant.layout import plant_layout
 
     _check(name)
     inner = controller_function(RIDE_CONTROLLERS[name])
     z = ca.SX.sym("z", inner.size1_in(0))
-    names = OUTPUT_NAMES if machine is None else plant_layout(machine).output_names
+    names = OUTPUT_NAMES if layout is None else layout.output_names
     y = ca.SX.sym("y", len(names))
     settings = ca.SX.sym("settings", inner.size1_in(2))
     sensors = ca.vertcat(*(y[names.index(signal)] for signal in SENSOR_NAMES))
@@ -100,9 +100,9 @@ def plant_controller_setup(
         plant.params,
         pressure_norm_pa,
         hold_command=plant.u0,
-        machine=plant.machine,
+        layout=plant.layout,
     )
-    readings = sensor_signals(plant.y0, plant.machine)
+    readings = sensor_signals(plant.y0, plant.layout)
     fixed = operating_state(RIDE_CONTROLLERS[name], vector, readings)
     return vector, np.asarray(fixed, dtype=float).ravel()
 

@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING, Any
 import casadi as ca
 import numpy as np
 
-from loader_model.machines import DEFAULT_MACHINE
+from loader_model.plant.layout import SKID_STEER, MachineSource, PlantLayout
 from loader_model.plant.plant_parameters import PlantOptions
 from loader_model.plant.scenario import PlantScenario, resolve_plant
 from loader_model.simulation.controllers import check_controller, hold_command_controller
@@ -57,10 +57,10 @@ HOLDING_CONTROLLERS: tuple[str, ...] = ("baseline", "passive")
 
 
 @functools.cache
-def _hold(machine: str = DEFAULT_MACHINE) -> ca.Function:
+def _hold(layout: PlantLayout = SKID_STEER) -> ca.Function:
     """The hold controller with u0 as its one setting (the same Function for every plant of a
-    machine)."""
-    return hold_command_controller(machine)
+    layout)."""
+    return hold_command_controller(layout)
 
 
 @dataclass(frozen=True, eq=False)
@@ -96,7 +96,7 @@ class Scenario:
         check_envelope(self.envelope)
         if not isinstance(self.plant, PlantScenario):
             raise TypeError(f"plant must be a PlantScenario; got {type(self.plant).__name__}")
-        controller = check_controller(self.controller, self.plant.machine)
+        controller = check_controller(self.controller, self.plant.layout)
         settings = np.array(self.settings, dtype=float).ravel()
         if settings.size != controller.size1_in(2):
             raise ValueError(
@@ -144,8 +144,8 @@ def closed_loop(
     if controller is None:
         if len(settings):
             raise ValueError("settings are for a controller; without one the pump holds u0")
-        controller, settings = _hold(plant.machine), (plant.u0,)
-    controller = check_controller(controller, plant.machine)
+        controller, settings = _hold(plant.layout), (plant.u0,)
+    controller = check_controller(controller, plant.layout)
     if controller_state is None:
         controller_state = np.zeros(controller.size1_in(0))
     vector = np.asarray(settings, dtype=float)
@@ -237,8 +237,7 @@ def ride_scenario(
     vector, state = plant_controller_setup(
         controller, plant, float(pressure_norm_pa), _controller_settings(settings)
     )
-    machine = None if plant.is_default_machine else plant.machine
-    function = plant_controller(controller, machine)
+    function = plant_controller(controller, None if plant.is_default_machine else plant.layout)
     return Scenario(plant, function, vector, state, controller, envelope)
 
 
@@ -250,7 +249,7 @@ def resolve_scenario(
     settings: ControllerSettings | str | Path | None = None,
     envelope: str = DEFAULT_ENVELOPE,
     *,
-    machine: str = DEFAULT_MACHINE,
+    machine: MachineSource = SKID_STEER,
 ) -> Scenario:
     """A closed-loop scenario from files, names or objects, each resolved once (module notes).
 
@@ -269,8 +268,9 @@ def resolve_scenario(
         Its settings (:func:`ride_scenario`).
     envelope : str
         ``"tandem-cam"`` (default) or ``"rigid"``: how the tyres envelop the road.
-    machine : str
-        The machine (default the skid-steer; :func:`~loader_model.plant.scenario.resolve_plant`:
+    machine : PlantLayout, str or pathlib.Path
+        The machine, resolved or a name or description file resolved once here (default the
+        skid-steer; :func:`~loader_model.plant.scenario.resolve_plant`:
         for another machine ``loader`` is its parameter file, ``load`` its load case; the
         controllers' ‖p_A‖∞ is :func:`~loader_model.plant.machine_parameters.pressure_norm`).
 

@@ -128,7 +128,7 @@ def course_input(
     if any(b < a for a, b in itertools.pairwise(offsets)) or offsets[-1] > 10.0:
         positions = ", ".join(f"{a}_x = {plant.parameter(f'{a}_x'):.6g} m" for a in axles)
         raise ValueError(
-            f"machine {plant.machine!r}: its axles must be described front first, each at "
+            f"machine {plant.layout.name!r}: its axles must be described front first, each at "
             f"most 10 m behind the front axle; got {positions}"
         )
     return course.road_input(
@@ -250,12 +250,9 @@ def simulate(
     state_names, output_names = layout.state_names, layout.output_names
     n_w = len(layout.exogenous_names)
     y_errors, y_steps = _sensor_errors(sensors, count, output_names)
-    bounds = resolve_bounds(
-        validity, params, machine=scenario.plant.machine, tyre_radius_m=road.tyre_radii_m
-    )
+    bounds = resolve_bounds(validity, params, layout=layout, tyre_radius_m=road.tyre_radii_m)
     monitor = validity_check.ValidityMonitor(bounds, period_s, layout)
-    machine = scenario.plant.machine
-    period, backend = compile_period(controller, period_s, substeps, jit, machine)
+    period, backend = compile_period(controller, period_s, substeps, jit, layout)
     refine_from = max(SUBSTEP_COUNTS) if substeps is None else int(substeps)
     chunk = min(int(chunk_periods), count)
     roll = rolled_period(period, chunk)
@@ -294,7 +291,7 @@ def simulate(
             size, index = int(failed[0]) + 1, start + int(failed[0])
             before = carry if failed[0] == 0 else block[failed[0] - 1]
             block[failed[0]] = refinement.refine_period(
-                period_s, refine_from, machine, before, block[failed[0]], exogenous[index],
+                period_s, refine_from, layout, before, block[failed[0]], exogenous[index],
                 exogenous[index + 1], params,
             )  # fmt: skip
             stop = start + size
@@ -358,7 +355,7 @@ def simulate(
         "real_time_factor": count * period_s / wall_s,
         "refined_periods": [round(k * period_s, 6) for k in refined],
         "validity": dataclasses.asdict(monitor.bounds),
-        "machine": scenario.plant.machine,
+        "machine": layout.name,
     }
     result = SimulationResult(
         time_rows, columns_out, carry[: len(state_names)].copy(), events, metadata

@@ -44,8 +44,7 @@ import casadi as ca
 import numpy as np
 
 from loader_model.control.sensors import quantise
-from loader_model.machines import DEFAULT_MACHINE
-from loader_model.plant.layout import plant_layout
+from loader_model.plant.layout import SKID_STEER, PlantLayout
 from loader_model.plant.plant import plant_function
 from loader_model.simulation.compiled import CompilationError, compiled_function
 from loader_model.simulation.result import column_unit
@@ -77,9 +76,9 @@ ERROR_SCALE_BY_UNIT: dict[str, float] = {
 }
 
 
-def step_error_scales(machine: str = DEFAULT_MACHINE) -> np.ndarray:
+def step_error_scales(layout: PlantLayout = SKID_STEER) -> np.ndarray:
     """The scale of each state's substep error estimate, by its unit (:data:`ERROR_SCALE_BY_UNIT`)."""
-    names = plant_layout(machine).state_names
+    names = layout.state_names
     return np.array([ERROR_SCALE_BY_UNIT.get(column_unit(name), 1e-3) for name in names])
 
 
@@ -122,7 +121,7 @@ def period_function(
     controller: ca.Function,
     period_s: float = 1e-3,
     substeps: int = 1,
-    machine: str = DEFAULT_MACHINE,
+    layout: PlantLayout = SKID_STEER,
 ) -> ca.Function:
     """One controller period of the closed loop (module notes) as an SX Function.
 
@@ -148,8 +147,7 @@ def period_function(
         (:func:`~loader_model.control.sensors.quantise`): the sensors' offset and noise of this
         period and their converter steps (0: exact).
     """
-    layout = plant_layout(machine)
-    plant = plant_function(machine)
+    plant = plant_function(layout)
     nx, nz = len(layout.state_names), controller.size1_in(0)
     n_w, n_y = len(layout.exogenous_names), len(layout.output_names)
     carry = ca.SX.sym("carry", nx + nz + 1)
@@ -162,7 +160,7 @@ def period_function(
     y_step = ca.SX.sym("y_step", n_y)
     _, y = plant(x, u_previous, w0, params)  # y does not depend on u (checked in the tests)
     z_next, u = controller(z, quantise(y + y_error, y_step), settings)
-    scales = step_error_scales(machine)
+    scales = step_error_scales(layout)
     state, _, _, error = ros2_period(
         plant, x, u, w0, w1, params, period_s, substeps, error_scales=scales
     )
@@ -248,13 +246,12 @@ def ros2_period(
 
 
 @functools.cache
-def plant_steps(period_s: float, substeps: int, machine: str = DEFAULT_MACHINE) -> ca.Function:
+def plant_steps(period_s: float, substeps: int, layout: PlantLayout = SKID_STEER) -> ca.Function:
     """``steps(x, u, w0, w1, params) -> x_next``: ``substeps`` ROS2 steps of the plant over
     ``period_s`` with u held and the exogenous input linear from w0 to w1, without a controller
     (:func:`ros2_period`), in CasADi's virtual machine: the simulator's refinement of a failed
     period (built in about 0.3 s, one evaluation 0.3 ms)."""
-    plant = plant_function(machine)
-    layout = plant_layout(machine)
+    plant = plant_function(layout)
     x = ca.SX.sym("x", len(layout.state_names))
     u = ca.SX.sym("u")
     w0, w1 = (
@@ -280,7 +277,7 @@ def compile_period(
     period_s: float = 1e-3,
     substeps: int | None = 1,
     jit: bool = True,
-    machine: str = DEFAULT_MACHINE,
+    layout: PlantLayout = SKID_STEER,
 ) -> tuple[ca.Function, str]:
     """The period Function, compiled to C if ``jit`` and a C compiler works; cached per process
     and, compiled, per machine (:mod:`~loader_model.simulation.compiled`). ``substeps`` None:
@@ -293,14 +290,14 @@ def compile_period(
         The Function and its backend, ``"jit"`` (compiled C) or ``"sx"`` (the fallback when
         compiling fails).
     """
-    key = (controller.serialize(), float(period_s), substeps, bool(jit), machine)
+    key = (controller.serialize(), float(period_s), substeps, bool(jit), layout)
     if key not in _COMPILED:
         if substeps is None:  # error-controlled substeps
             from loader_model.simulation.adaptive import adaptive_period_function
 
-            period = adaptive_period_function(controller, period_s, machine)
+            period = adaptive_period_function(controller, period_s, layout)
         else:
-            period = period_function(controller, period_s, int(substeps), machine)
+            period = period_function(controller, period_s, int(substeps), layout)
         compiled, backend = period, "sx"
         if jit:
             try:

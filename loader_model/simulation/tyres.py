@@ -29,9 +29,10 @@ def axle_tyres(plant: PlantScenario) -> tuple[AxleEnvelope, ...]:
     """
     params = plant.loader
     if params is None:
-        machine = plant.machine
         params = (
-            default_loader() if plant.is_default_machine else default_machine_parameters(machine)
+            default_loader()
+            if plant.is_default_machine
+            else default_machine_parameters(plant.layout.machine)
         )
     return axle_envelopes(params, plant.layout.machine.axles)
 

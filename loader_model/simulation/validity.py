@@ -59,8 +59,7 @@ from dataclasses import dataclass
 import casadi as ca
 import numpy as np
 
-from loader_model.machines import DEFAULT_MACHINE, resolve_machine_name
-from loader_model.plant.layout import plant_layout
+from loader_model.plant.layout import SKID_STEER, PlantLayout
 from loader_model.simulation._checks import as_number
 from loader_model.simulation.travel import DEFAULT_TYRE_RADIUS_M, tyre_radii
 
@@ -120,16 +119,16 @@ class ValidityBounds:
             object.__setattr__(self, field.name, number)
 
 
-def _parameter(params: np.ndarray, name: str, machine: str = DEFAULT_MACHINE) -> float:
-    return float(params[plant_layout(machine).parameter_names.index(name)])
+def _parameter(params: np.ndarray, name: str, layout: PlantLayout = SKID_STEER) -> float:
+    return float(params[layout.parameter_names.index(name)])
 
 
 @functools.cache
-def _bodies(machine: str) -> tuple[tuple[str, str | None], ...]:
+def _bodies(layout: PlantLayout) -> tuple[tuple[str, str | None], ...]:
     """(mass parameter, centre-of-gravity point or None for the chassis at H) of every body."""
     import tomllib
 
-    info = plant_layout(machine).machine
+    info = layout.machine
     raw = tomllib.loads(info.description_path.read_text(encoding="utf-8"))["bodies"]
     return tuple(
         (body["mass"], None if body["joint"] == "free" else body["centre_of_gravity"])
@@ -138,14 +137,14 @@ def _bodies(machine: str) -> tuple[tuple[str, str | None], ...]:
 
 
 def _stability_angles(
-    params: np.ndarray, tyre_radius_m: tuple[float, ...], machine: str = DEFAULT_MACHINE
+    params: np.ndarray, tyre_radius_m: tuple[float, ...], layout: PlantLayout = SKID_STEER
 ) -> tuple[float, float]:
     """Static stability angles (nose-down, nose-up) in rad about the front and rear contacts."""
 
     def value(name: str) -> float:
-        return _parameter(params, name, machine)
+        return _parameter(params, name, layout)
 
-    bodies = _bodies(machine)
+    bodies = _bodies(layout)
     total = sum(value(mass) for mass, _ in bodies)
     moving = [(value(mass), point) for mass, point in bodies if point is not None]
     # H is the chassis's centre of gravity
@@ -153,7 +152,7 @@ def _stability_angles(
     y_cg = sum(mass * value(f"{point}_y") for mass, point in moving) / total
     axles = sorted(
         (value(f"{a}_x"), value(f"{a}_y") - radius_m)
-        for a, radius_m in zip(plant_layout(machine).machine.axles, tyre_radius_m, strict=True)
+        for a, radius_m in zip(layout.machine.axles, tyre_radius_m, strict=True)
     )
     axles = [axles[0], axles[-1]]
     (rear_x, rear_y), (front_x, front_y) = axles
@@ -169,26 +168,25 @@ def _stability_angles(
 
 
 @functools.cache
-def _kinematics_grid(machine: str = DEFAULT_MACHINE) -> tuple[np.ndarray, ca.Function]:
+def _kinematics_grid(layout: PlantLayout = SKID_STEER) -> tuple[np.ndarray, ca.Function]:
     """The grid of φ over a turn and the cylinder kinematics mapped over it, built once."""
     phi = np.arange(-math.pi, math.pi + _GRID_STEP_RAD / 2, _GRID_STEP_RAD)
-    info = plant_layout(machine).machine
+    info = layout.machine
     return phi, info.function("cylinder_kinematics").map(phi.size)
 
 
-def _boom_range(params: np.ndarray, machine: str = DEFAULT_MACHINE) -> tuple[float, float]:
+def _boom_range(params: np.ndarray, layout: PlantLayout = SKID_STEER) -> tuple[float, float]:
     """φ − φ0 (down, up magnitudes) in rad that the stroke allows, with the end-stop margin,
     within the linkage's dead points (module notes)."""
-    layout = plant_layout(machine)
     mechanical = params[: layout.n_mechanical]
     completed, _ = layout.machine.function("complete_parameters")(mechanical)
-    phi, kinematics = _kinematics_grid(machine)
+    phi, kinematics = _kinematics_grid(layout)
     n = layout.n_coordinates
     # x_cyl depends on φ = θ2 − θ1 only (the lift cylinder between chassis and boom)
     p = np.vstack([np.zeros((3, phi.size)), phi, np.zeros((n - 4, phi.size))])
     length, _, slope, _ = kinematics(p, np.zeros((n, phi.size)), ca.repmat(completed, 1, phi.size))
-    piston = np.asarray(length).ravel() - _parameter(params, "L_retracted", machine)
-    stroke = _parameter(params, "stroke", machine)
+    piston = np.asarray(length).ravel() - _parameter(params, "L_retracted", layout)
+    stroke = _parameter(params, "stroke", layout)
     sign = np.sign(np.asarray(slope).ravel())
     zero = int(np.argmin(np.abs(phi)))
     ranges = []
@@ -213,10 +211,12 @@ def _boom_range(params: np.ndarray, machine: str = DEFAULT_MACHINE) -> tuple[flo
 
 
 @functools.lru_cache(maxsize=64)
-def _bounds_cached(key: bytes, tyre_radius_m: tuple[float, ...], machine: str) -> ValidityBounds:
+def _bounds_cached(
+    key: bytes, tyre_radius_m: tuple[float, ...], layout: PlantLayout
+) -> ValidityBounds:
     params = np.frombuffer(key, dtype=float)
-    down, up = _stability_angles(params, tyre_radius_m, machine)
-    boom_down, boom_up = _boom_range(params, machine)
+    down, up = _stability_angles(params, tyre_radius_m, layout)
+    boom_down, boom_up = _boom_range(params, layout)
     return ValidityBounds(down, up, boom_down, boom_up)
 
 
@@ -224,7 +224,7 @@ def validity_bounds(
     params: np.ndarray,
     *,
     tyre_radius_m: float | Sequence[float] = DEFAULT_TYRE_RADIUS_M,
-    machine: str = DEFAULT_MACHINE,
+    layout: PlantLayout = SKID_STEER,
 ) -> ValidityBounds:
     """The default bounds of the plant ``params`` (module notes), cached per parameter vector.
 
@@ -235,7 +235,7 @@ def validity_bounds(
     tyre_radius_m : float or sequence of float
         Free tyre radius in m, (0, 2], one for all axles or one per axle (front first): each
         contact point lies this far below its axle.
-    machine : str
+    layout : PlantLayout
         The machine of ``params`` (default the skid-steer): its bodies' masses and centres of
         gravity, its outermost axles and its lift cylinder's kinematics.
 
@@ -250,26 +250,25 @@ def validity_bounds(
     ValueError
         If the centre of gravity does not lie between and above the contact points.
     """
-    name = resolve_machine_name(machine)
-    size = len(plant_layout(name).parameter_names)
+    size = len(layout.parameter_names)
     vector = np.ascontiguousarray(params, dtype=float).ravel()
     if vector.size != size:
         raise ValueError(f"params must have {size} values; got {vector.size}")
-    radii = tyre_radii(tyre_radius_m, plant_layout(name).machine.axles)
-    return _bounds_cached(vector.tobytes(), radii, name)
+    radii = tyre_radii(tyre_radius_m, layout.machine.axles)
+    return _bounds_cached(vector.tobytes(), radii, layout)
 
 
 def resolve_bounds(
     validity: ValidityBounds | None,
     params: np.ndarray,
     *,
-    machine: str = DEFAULT_MACHINE,
+    layout: PlantLayout = SKID_STEER,
     tyre_radius_m: float | Sequence[float] = DEFAULT_TYRE_RADIUS_M,
 ) -> ValidityBounds:
-    """``validity`` checked, or the defaults of ``params`` (of ``machine``, on tyres of
-    ``tyre_radius_m``) when None."""
+    """``validity`` checked, or the defaults of ``params`` (of the machine ``layout``, on tyres
+    of ``tyre_radius_m``) when None."""
     if validity is None:
-        return validity_bounds(params, machine=machine, tyre_radius_m=tyre_radius_m)
+        return validity_bounds(params, layout=layout, tyre_radius_m=tyre_radius_m)
     if not isinstance(validity, ValidityBounds):
         raise TypeError(f"validity must be a ValidityBounds or None; got {type(validity).__name__}")
     return validity

@@ -170,7 +170,7 @@ class LoaderDynamics:
 
         info = _machine(machine)
         if not info.is_default:
-            return cls(resolve_machine_values(info.name, loader, load), machine=info)
+            return cls(resolve_machine_values(info, loader, load), machine=info)
         from loader_model.parameters import model_parameter_values
 
         loader, load = resolve_machine(loader, load)

@@ -16,7 +16,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import loader_model_generated as generated
-from loader_model.machines import machine
+from loader_model.machines import MachineInfo
 from loader_model.parameters.checks import END_STOP_MARGIN_M, check_distinct
 from loader_model.parameters.machine_files import (
     MachineParameters,
@@ -150,9 +150,10 @@ def resolve_machine(
 
 
 def machine_static_equilibrium(
-    name: str, params: MachineParameters, load: str | None = None
+    info: MachineInfo, params: MachineParameters, load: str | None = None
 ) -> dict[str, float]:
-    """Static loads of a described machine at p = 0 with the bucket load case ``load``.
+    """Static loads of the described machine ``info`` at p = 0 with the bucket load case
+    ``load``.
 
     Returns
     -------
@@ -162,7 +163,6 @@ def machine_static_equilibrium(
         ``F_act0`` (N), ``x_cyl0`` (m, the driven cylinder's pin-to-pin length) and ``p_A0``
         (Pa gauge, rod side at the charge pressure, or a valve circuit's tank pressure).
     """
-    info = machine(name)
     values = machine_model_values(params, load)
     completed, force = info.function("complete_parameters")(
         [values[n] for n in info.parameter_names]
@@ -183,9 +183,12 @@ def machine_static_equilibrium(
 
 
 def resolve_machine_values(
-    name: str, params: MachineParameters | str | Path | None = None, load: str | None = None
+    info: MachineInfo,
+    params: MachineParameters | str | Path | None = None,
+    load: str | None = None,
 ) -> dict[str, float]:
-    """Model values of a described machine whose parameters and load stand together at rest.
+    """Model values of the described machine ``info`` whose parameters and load stand together
+    at rest.
 
     Raises
     ------
@@ -194,10 +197,10 @@ def resolve_machine_values(
         cylinder would pull or hold more than :data:`MAX_STATIC_PRESSURE_PA`, or its pin-to-pin
         length at p = 0 is not within the stroke (away from the end stops).
     """
-    params = resolve_machine_parameters(name, params)
-    statics = machine_static_equilibrium(name, params, load)
-    where = f"machine {name!r} ({params.origin}) with load {load or 'as in [model]'}"
-    axles = machine(name).axles
+    params = resolve_machine_parameters(info, params)
+    statics = machine_static_equilibrium(info, params, load)
+    where = f"machine {info.name!r} ({params.origin}) with load {load or 'as in [model]'}"
+    axles = info.axles
     for axle in axles:
         key = f"F_{axle}y0"
         if not statics[key] > 0.0:

@@ -31,7 +31,7 @@ from derive.description import (
     structural_parameters,
 )
 from derive.description_values import check_values
-from loader_model.machines import resolve_machine_name
+from loader_model.machines import machine, resolve_machine_name
 from loader_model.parameters.machine_files import load_machine_parameters
 
 DESCRIPTIONS = [(MACHINES_DIR / f"{name}.toml").read_text("utf-8") for name in available_machines()]
@@ -133,7 +133,7 @@ def test_mutated_values_are_checked_or_a_clear_error(data: bytes) -> None:
             except DescriptionError as error:
                 _one_line(error, "values for compact_wheel_loader")
         try:
-            load_machine_parameters(path, "compact_wheel_loader")
+            load_machine_parameters(path, machine("compact_wheel_loader"))
         except ValueError as error:
             _one_line(error, "values.toml")
         _written_alone(Path(scratch), "values.toml")

@@ -48,13 +48,14 @@ def test_tyre_deflection_and_contact_patch(skid_steer) -> None:
 def test_pressure_norms_and_the_wheel_loaders_precharge(skid_steer) -> None:
     """‖p_A‖∞ = 100 / 200 bar over the skid-steer's static piston pressures; the wheel loader's
     precharge 0.56 of its lowest static piston pressure."""
+    from loader_model.machines import machine
     from loader_model.plant.machine_parameters import PRECHARGE_FRACTION, precharge_pressure
 
     ratios = [
         norm / (skid_steer[load].output("p_A") / 1e5)
         for load, norm in (("empty", 100.0), ("full", 200.0))
     ]
-    precharge_bar = precharge_pressure("compact_wheel_loader") / 1e5
+    precharge_bar = precharge_pressure(machine("compact_wheel_loader")) / 1e5
     machines = _page("machines.md")
     assert f"skid-steer's {PRECHARGE_FRACTION:.2f} of the lightest load's static" in machines
     assert f"({precharge_bar:.1f} bar for the wheel loader" in machines

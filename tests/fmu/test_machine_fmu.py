@@ -42,9 +42,9 @@ def test_wheel_loader_fmu_derivatives_equal_the_plant_function(tmp_path: Path) -
         layout.output_names
     )
     assert [d.variable.name for d in md.derivatives] == [f"der(x.{n})" for n in layout.state_names]
-    names = fmu_parameter_names(MACHINE)
+    names = fmu_parameter_names(plant_layout(MACHINE))
     assert not set(names) & set(layout.machine.static_names)
-    for name, value in zip(names, fmu_parameter_values(params, MACHINE), strict=True):
+    for name, value in zip(names, fmu_parameter_values(params, plant_layout(MACHINE)), strict=True):
         assert float(by_name[name].start) == pytest.approx(value, rel=1e-15), name
 
     n = len(layout.state_names)

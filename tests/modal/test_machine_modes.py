@@ -13,6 +13,7 @@ from scipy.linalg import eigh
 
 import loader_model_generated as skid
 import loader_model_generated.compact_wheel_loader as wl
+from loader_model.machines import machine
 from loader_model.modal.modes import modal_analysis
 from loader_model.modal.undamped import machine_undamped_matrices, undamped_matrices
 from loader_model.parameters.sets import bucket_load, default_loader, model_parameter_values
@@ -51,7 +52,7 @@ def test_wheel_loader_modes_equal_an_independent_computation(load: str) -> None:
     mass = np.asarray(wl.function("mass_matrix")(zeros, params))
     expected = np.sort(np.sqrt(eigh(stiffness, mass, eigvals_only=True)) / (2 * np.pi))[::-1]
 
-    matrices = machine_undamped_matrices("compact_wheel_loader", None, load)
+    matrices = machine_undamped_matrices(machine("compact_wheel_loader"), None, load)
     result = modal_analysis(matrices.mass, matrices.stiffness)
     np.testing.assert_allclose(result.frequencies_hz, expected, rtol=1e-10)
     assert matrices.hydraulic_stiffness_n_per_m == pytest.approx(_closed_oil_columns(length))
@@ -61,7 +62,7 @@ def test_wheel_loader_modes_equal_an_independent_computation(load: str) -> None:
 
 def test_locked_tilt_spring_is_in_the_stiffness() -> None:
     """Without the tilt spring the bucket hangs free: its angle's diagonal stiffness drops."""
-    with_spring = machine_undamped_matrices("compact_wheel_loader", None, "full")
+    with_spring = machine_undamped_matrices(machine("compact_wheel_loader"), None, "full")
     values = {k: v["value"] for k, v in SHIPPED["model"].items()}
     params, _ = wl.function("complete_parameters")([values.get(n, 0.0) for n in wl.PARAMETER_NAMES])
     k_e = wl.function("internal_forces")

@@ -34,7 +34,7 @@ def _params(controller: str = "skyhook", load: str | None = None, **changes: boo
         from dataclasses import replace
 
         options = replace(options, **changes)
-    return machine_plant_parameter_vector(MACHINE, None, load, options)
+    return machine_plant_parameter_vector(plant_layout(MACHINE), None, load, options)
 
 
 def test_skid_steer_layout_is_the_papers() -> None:
@@ -82,14 +82,14 @@ def test_closed_valves_equilibrium_drifts_by_the_seals_only() -> None:
 
 def test_static_outputs() -> None:
     scenario = resolve_plant(None, "full", PlantOptions(), machine=MACHINE)
-    assert scenario.machine == MACHINE
+    assert scenario.layout == plant_layout(MACHINE)
     assert scenario.output("p_A") == pytest.approx(41.34e5, rel=1e-3)
     assert scenario.output("F_Ay") + scenario.output("F_By") == pytest.approx(
         (4200 + 450 + 950) * 9.80665, rel=1e-9
     )
     assert scenario.output("f_Sy") == pytest.approx(9.80665, rel=1e-6)
     empty = scenario.with_options(PlantOptions.for_controller("passive"))
-    assert empty.machine == MACHINE and empty.parameter("accumulator_on") == 1.0
+    assert empty.layout is scenario.layout and empty.parameter("accumulator_on") == 1.0
 
 
 def test_linearisation_matches_finite_differences() -> None:
@@ -118,7 +118,7 @@ def test_linearisation_matches_finite_differences() -> None:
 
 def test_undamped_matrices() -> None:
     mass, stiffness, k_eq = undamped_matrices_from_plant(
-        machine_plant_parameter_vector(MACHINE, None, None, PlantOptions.closed()),
+        machine_plant_parameter_vector(plant_layout(MACHINE), None, None, PlantOptions.closed()),
         machine=MACHINE,
     )
     assert mass.shape == (5, 5) and stiffness.shape == (5, 5)
@@ -127,12 +127,12 @@ def test_undamped_matrices() -> None:
 
 
 def test_power_balance_at_random_states() -> None:
-    names, losses = energy_names(MACHINE)
+    names, losses = energy_names(plant_layout(MACHINE))
     assert names[-1] == "internal" and losses[-1] == "internal"
     params = _params("skyhook", occupant=False)
     x0, u0 = static_state(params, MACHINE)
     rng = np.random.default_rng(3)
-    rate = energy_rate_function(MACHINE)
+    rate = energy_rate_function(plant_layout(MACHINE))
     for _ in range(20):
         x = (
             x0

@@ -157,7 +157,9 @@ def _stiff_valve_loader() -> tuple[dict[str, float], np.ndarray, list[str]]:
     held by tyres 1e5 times stiffer, the bucket locked to the boom, friction and occupant off."""
     layout = plant_layout("compact_wheel_loader", "valve")
     options = PlantOptions(friction=False, occupant=False)
-    pump = machine_plant_parameter_vector("compact_wheel_loader", None, "full", options)
+    pump = machine_plant_parameter_vector(
+        plant_layout("compact_wheel_loader"), None, "full", options
+    )
     names = plant_layout("compact_wheel_loader").parameter_names
     entries = dict(zip(names, pump.tolist(), strict=True))
     entries |= valve_plant_entries(_example_valve(), "load_sensing")
@@ -169,8 +171,9 @@ def _stiff_valve_loader() -> tuple[dict[str, float], np.ndarray, list[str]]:
 
 def test_hydraulic_natural_frequency_of_the_valve_cylinder() -> None:
     entries, params, states = _stiff_valve_loader()
-    x0, u0, _ = equilibrium_function("compact_wheel_loader", "valve")(params)
-    plant = build_plant(ca.SX, "compact_wheel_loader", "valve")
+    valve = plant_layout("compact_wheel_loader", "valve")
+    x0, u0, _ = equilibrium_function(valve)(params)
+    plant = build_plant(ca.SX, valve)
     x = ca.SX.sym("x", plant.size1_in(0))
     xdot = plant(x, u0, np.zeros(plant.size1_in(2)), params)[0]
     rate = np.asarray(ca.Function("f", [x], [xdot])(x0), dtype=float).ravel()

@@ -128,7 +128,7 @@ def test_wheel_loader_robust_gains_are_designed_on_its_sampled_plants() -> None:
     assert gains["robust"]["full"] == gain
     assert not np.allclose(gain, gains["optimised"]["full"], rtol=1e-6)
     for spec in specs:
-        plant = machine_sample_plant(spec, MACHINE)
+        plant = machine_sample_plant(spec, study.layout)
         speed = spec.speed_kmh * spec.speed_factor
         (design,) = comfort_plants((spec.load,), study.road_class, speed, {spec.load: plant})
         assert evaluate_gain([design], np.asarray(gain))[0].margin > 0.0

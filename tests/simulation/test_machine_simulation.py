@@ -8,6 +8,7 @@ import math
 import numpy as np
 import pytest
 
+from loader_model.plant.layout import plant_layout
 from loader_model.simulation.courses import paper_course
 from loader_model.simulation.machine_comparison import compare_controllers, format_comparison
 from loader_model.simulation.scenario import resolve_scenario
@@ -19,7 +20,7 @@ MACHINE = "compact_wheel_loader"
 
 def test_validity_bounds_from_the_machine() -> None:
     scenario = resolve_scenario(None, "full", controller="baseline", machine=MACHINE)
-    bounds = validity_bounds(scenario.params, machine=MACHINE)
+    bounds = validity_bounds(scenario.params, layout=scenario.plant.layout)
     # the bucket's 950 kg far ahead: it tips forward long before it tips back
     assert 0.3 < bounds.pitch_down_rad < bounds.pitch_up_rad < math.pi / 2
     assert 0.0 < bounds.boom_down_rad < bounds.boom_up_rad < math.pi
@@ -39,7 +40,7 @@ def test_course_runs_valid_and_finite(controller: str) -> None:
 # slow: 6.5 s (the wheel loader's four controllers over a course)
 @pytest.mark.slow
 def test_comparison_rows() -> None:
-    rows = compare_controllers(MACHINE, None, "full", course=paper_course(9.0))
+    rows = compare_controllers(plant_layout(MACHINE), None, "full", course=paper_course(9.0))
     assert [row.controller for row in rows] == [
         "baseline",
         "passive",

@@ -107,12 +107,13 @@ def test_a_machines_own_radii_reach_each_axle_of_its_road_input() -> None:
     course_input builds each axle's rigid envelope from its own radius (closed form above)."""
     import dataclasses
 
+    from loader_model.machines import machine
     from loader_model.parameters.machine_files import default_machine_parameters
     from loader_model.plant.scenario import resolve_plant
     from loader_model.simulation import Course
     from loader_model.simulation.simulator import course_input
 
-    shipped = default_machine_parameters("compact_wheel_loader")
+    shipped = default_machine_parameters(machine("compact_wheel_loader"))
     radii = {"R_A": 0.3, "R_B": 0.6}
     params = dataclasses.replace(shipped, tyres=shipped.tyres | radii)
     plant = resolve_plant(params, None, machine="compact_wheel_loader")

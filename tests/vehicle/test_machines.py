@@ -129,7 +129,7 @@ def test_parameter_file_errors_name_the_entry(
     path = tmp_path / "wl.toml"
     path.write_text(SHIPPED.replace(old, new, 1))
     with pytest.raises(ValueError, match=message) as error:
-        load_machine_parameters(path, "compact_wheel_loader")
+        load_machine_parameters(path, machine("compact_wheel_loader"))
     assert str(path) in str(error.value)
 
 
@@ -139,16 +139,16 @@ def test_unknown_parameter_and_load_case(tmp_path: Path) -> None:
         SHIPPED.replace("[model]\n", '[model]\nZ_x = { value = 1.0, unit = "m", source = "x" }\n')
     )
     with pytest.raises(ValueError, match=r"\[model\]: unknown Z_x; allowed: A_x"):
-        load_machine_parameters(path, "compact_wheel_loader")
+        load_machine_parameters(path, machine("compact_wheel_loader"))
     with pytest.raises(ValueError, match="unknown load case 'heavy'; allowed: empty, full"):
-        resolve_machine_values("compact_wheel_loader", None, "heavy")
+        resolve_machine_values(machine("compact_wheel_loader"), None, "heavy")
 
 
 def test_wheel_loader_dynamics_from_its_metadata() -> None:
     model = LoaderDynamics.from_parameters(None, "full", machine="compact_wheel_loader")
     linear = model.linearise()
     assert linear.A.shape == (10, 10) and linear.state_names == wl.STATE_NAMES
-    params = default_machine_parameters("compact_wheel_loader")
+    params = default_machine_parameters(machine("compact_wheel_loader"))
     raw = np.array([params.model[n] for n in wl.PARAMETER_NAMES])
     completed, force = wl.function("complete_parameters")(raw)
     np.testing.assert_array_equal(model.parameters, np.asarray(completed).ravel())

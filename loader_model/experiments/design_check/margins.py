@@ -61,13 +61,11 @@ def _gain(design: Design) -> np.ndarray:
 
 
 def _nominal_params(design: Design, loads: tuple[str, ...]) -> dict[str, Any] | None:
-    if design.machine == "skid_steer" and design.params is None:
+    if design.layout.machine.is_default and design.params is None:
         return None
     from loader_model.plant.scenario import resolve_plant
 
-    if design.machine == "skid_steer":
-        return {load: resolve_plant(design.params, load) for load in loads}
-    return {load: resolve_plant(design.params, load, machine=design.machine) for load in loads}
+    return {load: resolve_plant(design.params, load, machine=design.layout) for load in loads}
 
 
 def linear_margins(design: Design, loads: tuple[str, ...]) -> dict[str, LinearMargin]:
@@ -104,7 +102,7 @@ def sampled_plants(design: Design, count: int, study_path: str | None = None) ->
     if count <= 0:
         return []
     if study_path is None:
-        if design.machine != "skid_steer" or design.params is not None:
+        if not design.layout.machine.is_default or design.params is not None:
             return []
         with resources.as_file(
             resources.files("loader_model") / "data" / "robustness_example.toml"
@@ -115,10 +113,10 @@ def sampled_plants(design: Design, count: int, study_path: str | None = None) ->
     plants = []
     for spec in sample_specs(study, count, stream=2):
         try:
-            if study.machine == "skid_steer":
+            if study.layout.machine.is_default:
                 params: Any = sample_plant_vector(spec)[0]
             else:
-                params = sample_plant(spec, study.machine, study.params)
+                params = sample_plant(spec, study.layout, study.params)
         except ValueError:  # a drawn set the parameter checks refuse: not a plant
             continue
         speed = spec.speed_kmh * spec.speed_factor

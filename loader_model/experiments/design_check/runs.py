@@ -13,7 +13,7 @@ number.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -22,6 +22,7 @@ from loader_model.experiments.design_check.envelope import COURSE_PREFIX, Condit
 
 if TYPE_CHECKING:
     from loader_model.control.settings import ControllerSettings
+    from loader_model.plant.layout import PlantLayout
     from loader_model.plant.scenario import PlantScenario
 
 __all__ = [
@@ -49,15 +50,25 @@ class Design:
     controller : str
         ``"skyhook"`` or ``"virtual-accumulator"`` (section 3).
     machine : str
-        A machine name or description file (default the skid-steer).
+        A machine name or description file (default the skid-steer), as given.
     params : str or None
         The machine's parameter file (default its shipped one).
+    layout : PlantLayout
+        The machine resolved once when the design is made (default: from ``machine``); a worker
+        process that unpickles the design resolves it again through the verified registry.
     """
 
     settings: ControllerSettings
     controller: str = "skyhook"
     machine: str = "skid_steer"
     params: str | None = None
+    layout: PlantLayout = field(default=None, compare=False, repr=False)  # type: ignore[assignment]
+
+    def __post_init__(self) -> None:
+        if self.layout is None:
+            from loader_model.plant.layout import plant_layout
+
+            object.__setattr__(self, "layout", plant_layout(self.machine))
 
 
 @dataclass(frozen=True)
@@ -97,16 +108,13 @@ class RunOutcome:
 
 def condition_plant(design: Design, load: str, controller: str) -> PlantScenario:
     """The plant of ``load`` on the circuit ``controller`` runs on, resolved once per process."""
-    key = (design.machine, design.params, load, controller)
+    key = (design.layout, design.params, load, controller)
     if key not in _PLANTS:
         from loader_model.plant.plant_parameters import PlantOptions
         from loader_model.plant.scenario import resolve_plant
 
         options = PlantOptions.for_controller(controller)
-        if design.machine == "skid_steer":
-            _PLANTS[key] = resolve_plant(design.params, load, options)
-        else:
-            _PLANTS[key] = resolve_plant(design.params, load, options, machine=design.machine)
+        _PLANTS[key] = resolve_plant(design.params, load, options, machine=design.layout)
     return _PLANTS[key]
 
 
@@ -121,7 +129,7 @@ def condition_scenario(design: Design, load: str, which: str) -> Any:
     if which != "design":
         return ride_scenario(plant, which)
     norm = None
-    if design.machine == "skid_steer" and plant.load is not None:
+    if design.layout.machine.is_default and plant.load is not None:
         norm = plant.load.pressure_normalisation
     return ride_scenario(plant, controller, design.settings, pressure_norm_pa=norm)
 
