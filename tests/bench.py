@@ -407,6 +407,8 @@ def _bench_simulator() -> None:
     simulate(road, params, duration_s=20.0, substeps=None)
     fast = _median_seconds(lambda: simulate(road, params, duration_s=20.0), 7)
     adaptive = _median_seconds(lambda: simulate(road, params, duration_s=20.0, substeps=None), 7)
+    simulate(road, params, duration_s=20.0, jacobian="period")
+    shared = _median_seconds(lambda: simulate(road, params, duration_s=20.0, jacobian="period"), 7)
     chosen = simulate(road, params, duration_s=20.0, substeps=None).metadata
     goal_line(
         "simulate 20 s (goal: real-time factor>=400)", f"{fast:9.3f} s, RTF {20.0 / fast:.0f}",
@@ -416,6 +418,10 @@ def _bench_simulator() -> None:
         f"{'':<42}substeps chosen by the error: {adaptive:.3f} s, RTF {20.0 / adaptive:.0f}, "
         f"{fast / adaptive:.2f} x the speed of the default 4 fixed substeps; "
         f"{chosen['mean_substeps']:.2f} substeps a period {chosen['substep_periods']}"
+    )
+    print(
+        f"{'':<42}one Jacobian a period (jacobian='period'): {shared:.3f} s, RTF "
+        f"{20.0 / shared:.0f}, {fast / shared:.2f} x the speed of the default"
     )
     _in_process_run()
     span = BASELINE_SPAN_S
@@ -484,16 +490,24 @@ def _in_process_run() -> None:
     road = course_input(paper_course(9.0), params)
     control = controller_arguments("skyhook", "full", params)
     times = {}
-    for substeps in (4, None):
-        simulate(road, params, duration_s=10.0, substeps=substeps, **control)
-        times[substeps] = _median_seconds(
-            lambda s=substeps: simulate(road, params, duration_s=10.0, substeps=s, **control), 7
+    for substeps, jacobian in ((4, "substep"), (None, "substep"), (4, "period")):
+        simulate(road, params, duration_s=10.0, substeps=substeps, jacobian=jacobian, **control)
+        times[substeps, jacobian] = _median_seconds(
+            lambda s=substeps, j=jacobian: simulate(
+                road, params, duration_s=10.0, substeps=s, jacobian=j, **control
+            ),
+            7,
         )
     goal_line(
-        "one 10 s run in-process (goal <= 40 ms)", f"{times[4] * 1e3:9.1f} ms",
-        times[4] <= 0.040,
+        "one 10 s run in-process (goal <= 40 ms)", f"{times[4, 'substep'] * 1e3:9.1f} ms",
+        times[4, "substep"] <= 0.040,
     )  # fmt: skip
-    print(f"{'':<42}chosen substeps {times[None] * 1e3:.1f} ms ({times[4] / times[None]:.2f} x)")
+    fixed = times[4, "substep"]
+    for label, key in (
+        ("chosen substeps", (None, "substep")),
+        ("one Jacobian a period", (4, "period")),
+    ):
+        print(f"{'':<42}{label} {times[key] * 1e3:.1f} ms ({fixed / times[key]:.2f} x)")
 
 
 def _percent(values: np.ndarray) -> str:

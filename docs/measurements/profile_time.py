@@ -6,10 +6,11 @@ Run from the repository's root::
 
 It prints the CasADi instruction counts of the parts of one 1 ms period of the skid-steer (the
 plant's right-hand side, with its Jacobian, the sparse LU and its two solves, the whole period
-with four ROS2 substeps), then profiles (cProfile, one process) the 64 runs of the Table 6
-matrix and ``loader-model check-design default`` and splits their time by what it is spent
-on. Its first line says when, where and under what load it ran: the seconds are that machine's,
-the shares hold elsewhere to a few percent.
+with four ROS2 substeps, and with one Jacobian for the period's four substeps), then profiles
+(cProfile, one process) the 64 runs of the Table 6 matrix and ``loader-model check-design
+default`` and splits their time by what it is spent on. Its first line says when, where and
+under what load it ran: the seconds are that machine's, the shares hold elsewhere to a few
+percent.
 """
 
 from __future__ import annotations
@@ -60,11 +61,13 @@ def period_sizes() -> None:
     solve = lu_solver(ca.SX.eye(nx) - 0.1 * matrix)
     lu = ca.Function("lu", [matrix, b], [solve(b), solve(2.0 * b + 1.0)]).n_instructions()
     period = period_function(hold_command_controller(), substeps=4).n_instructions()
+    shared = period_function(hold_command_controller(), substeps=4, jacobian="period")
     print(f"one period of the skid-steer: {nx} states, Jacobian {jacobian.nnz()} non-zeros")
     print(f"  plant right-hand side              {rhs:6d} instructions")
     print(f"  right-hand side and its Jacobian   {with_jacobian:6d} instructions")
     print(f"  sparse LU and two solves           {lu:6d} instructions")
     print(f"  period, 4 ROS2 substeps, hold      {period:6d} instructions")
+    print(f"  the same, one Jacobian a period    {shared.n_instructions():6d} instructions")
 
 
 def split(profile: cProfile.Profile, label: str) -> None:

@@ -167,6 +167,7 @@ def simulate(
     duration_s: float | None = None,
     period_s: float = CONTROLLER_PERIOD_S,
     substeps: int | None = DEFAULT_SUBSTEPS,
+    jacobian: str = "substep",
     jit: bool = True,
     chunk_periods: int = DEFAULT_CHUNK_PERIODS,
     airborne_min_s: float = DEFAULT_AIRBORNE_MIN_S,
@@ -207,6 +208,10 @@ def simulate(
         ROS2 steps per period (default :data:`DEFAULT_SUBSTEPS`); None: the fewest of
         :data:`~loader_model.simulation.adaptive.SUBSTEP_COUNTS` whose error estimate stays
         within :data:`~loader_model.simulation.adaptive.STEP_TOLERANCE`, period by period.
+    jacobian : str
+        ``"substep"`` (default): each ROS2 substep forms W from its own Jacobian; ``"period"``:
+        the substeps of a period share the Jacobian of its start (ROS2 as a Rosenbrock-W method,
+        :mod:`~loader_model.simulation.stepper`; fixed ``substeps`` only).
     jit : bool
         JIT-compile the period (falls back to the SX virtual machine without a C compiler).
     chunk_periods : int
@@ -252,7 +257,7 @@ def simulate(
     y_errors, y_steps = _sensor_errors(sensors, count, output_names)
     bounds = resolve_bounds(validity, params, layout=layout, tyre_radius_m=road.tyre_radii_m)
     monitor = validity_check.ValidityMonitor(bounds, period_s, layout)
-    period, backend = compile_period(controller, period_s, substeps, jit, layout)
+    period, backend = compile_period(controller, period_s, substeps, jit, layout, jacobian)
     refine_from = max(SUBSTEP_COUNTS) if substeps is None else int(substeps)
     chunk = min(int(chunk_periods), count)
     roll = rolled_period(period, chunk)
@@ -345,7 +350,7 @@ def simulate(
     metadata = {
         "controller": controller.name(),
         "backend": backend,
-        "scheme": "ROS2",
+        "scheme": "ROS2" if jacobian == "substep" else "ROS2, one Jacobian a period (W)",
         "period_s": period_s,
         "substeps": "adaptive" if adaptive else int(substeps),
         "substep_periods": {str(n): taken[n] for n in sorted(taken)},

@@ -17,6 +17,13 @@ to the identity in the mechanical rows; a symbolic QR divides by columns that ar
 at rest and gave NaN). The road input enters as the table samples at the period's ends and is
 interpolated linearly inside it (:mod:`~loader_model.simulation.travel`).
 
+With ``jacobian="period"`` the period's substeps share one W, formed from J at the period's
+start: ROS2 as a Rosenbrock-W method, still second order (the order holds for any W), with one
+Jacobian and one factorisation per period instead of one per substep (about 13 100 instead of
+21 100 instructions for the skid-steer's period with four substeps). The default stays one
+Jacobian per substep (the shipped results were made with it); the simulation guide compares
+the two against CVODES.
+
 Each substep also gives the embedded first-order solution x_n + h k_1 (linearly implicit Euler)
 and so the error estimate ½ h (k_1 + k_2); the period reports its largest entry over the
 substeps in units of :func:`step_error_scales` (per state, by its unit). Where a substep
@@ -51,6 +58,7 @@ from loader_model.simulation.result import column_unit
 
 __all__ = [
     "ERROR_SCALE_BY_UNIT",
+    "JACOBIAN_CHOICES",
     "compile_period",
     "lu_solver",
     "period_function",
@@ -61,6 +69,10 @@ __all__ = [
 ]
 
 _GAMMA = 1.0 + 1.0 / math.sqrt(2.0)
+#: Where W = I − γ h J takes its Jacobian (module notes): ``"substep"`` at each substep's start
+#: (ROS2, the default), ``"period"`` once at the period's start for all its substeps (ROS2 as a
+#: Rosenbrock-W method).
+JACOBIAN_CHOICES = ("substep", "period")
 
 #: Scale of one substep's error estimate per state unit (module notes): a tenth of a millimetre
 #: or milliradian, a millimetre per second, a bar, a tenth of a cm³. Units not listed: 1e-3.
@@ -122,6 +134,7 @@ def period_function(
     period_s: float = 1e-3,
     substeps: int = 1,
     layout: PlantLayout = SKID_STEER,
+    jacobian: str = "substep",
 ) -> ca.Function:
     """One controller period of the closed loop (module notes) as an SX Function.
 
@@ -134,6 +147,10 @@ def period_function(
         Controller period h in s.
     substeps : int
         ROS2 steps per period.
+    layout : PlantLayout
+        The machine and its lift circuit.
+    jacobian : str
+        :data:`JACOBIAN_CHOICES`: one Jacobian per substep or one per period (module notes).
 
     Returns
     -------
@@ -162,7 +179,7 @@ def period_function(
     z_next, u = controller(z, quantise(y + y_error, y_step), settings)
     scales = step_error_scales(layout)
     state, _, _, error = ros2_period(
-        plant, x, u, w0, w1, params, period_s, substeps, error_scales=scales
+        plant, x, u, w0, w1, params, period_s, substeps, error_scales=scales, jacobian=jacobian
     )
     outputs = ca.cse(ca.vertcat(state, z_next, u, y, u, error))
     carry_next = outputs[: nx + nz + 1]
@@ -188,6 +205,7 @@ def ros2_period(
     sensitivities: bool = False,
     error_scales: np.ndarray | None = None,
     seed: ca.SX | None = None,
+    jacobian: str = "substep",
 ) -> tuple[ca.SX, ca.SX | None, ca.SX | None, ca.SX | None]:
     r"""``substeps`` ROS2 steps of ``plant`` over one period with u held (module notes).
 
@@ -202,8 +220,14 @@ def ros2_period(
     straddles a valve's opening band amplifies by up to 2.6e4 in one period (measured along the
     paper course; ``loader_model.bound.trajectory``'s notes). Else (None, None). With a
     ``seed`` ((nx + 1) × m directions in (δx, δu)) the same variational steps carry only those m
-    directions: A is the flow's derivative along them (nx × m) and B is None.
+    directions: A is the flow's derivative along them (nx × m) and B is None. ``jacobian``
+    (:data:`JACOBIAN_CHOICES`, module notes): ``"period"`` forms W once from J at the period's
+    start for every substep; sensitivities need one Jacobian per substep.
     """
+    if jacobian not in JACOBIAN_CHOICES:
+        raise ValueError(f"jacobian = {jacobian!r}; allowed: {', '.join(JACOBIAN_CHOICES)}")
+    if jacobian == "period" and (sensitivities or seed is not None):
+        raise ValueError("jacobian = 'period' carries no sensitivities; allowed: 'substep'")
     nx = x.shape[0]
     step = period_s / substeps
     sensitivities = sensitivities or seed is not None
@@ -220,16 +244,19 @@ def ros2_period(
     for index in range(substeps):
         w_start = w0 + (w1 - w0) * (index / substeps)
         w_end = w0 + (w1 - w0) * ((index + 1) / substeps)
-        rate, jacobian, *rest = rate_and_jacobian(state, u, w_start, params)
-        solve = lu_solver(ca.SX.eye(nx) - _GAMMA * step * jacobian)
+        if index == 0 or jacobian == "substep":
+            rate, jac, *rest = rate_and_jacobian(state, u, w_start, params)
+            solve = lu_solver(ca.SX.eye(nx) - _GAMMA * step * jac)
+        else:  # Rosenbrock-W: the period's first W
+            rate = plant(state, u, w_start, params)[0]
         if sensitivities:
             forcing = (
                 rest[0] @ seed[nx, :]
                 if seed is not None
                 else ca.horzcat(ca.SX.zeros(nx, nx), rest[0])
             )
-            k1 = ca.horzcat(*(solve(c) for c in ca.horzsplit(jacobian @ flow + forcing)))
-            second = jacobian @ (flow + step * k1) + forcing - 2.0 * k1
+            k1 = ca.horzcat(*(solve(c) for c in ca.horzsplit(jac @ flow + forcing)))
+            second = jac @ (flow + step * k1) + forcing - 2.0 * k1
             k2 = ca.horzcat(*(solve(c) for c in ca.horzsplit(second)))
             flow = flow + 1.5 * step * k1 + 0.5 * step * k2
         k1 = solve(rate)
@@ -269,7 +296,7 @@ def plant_steps(period_s: float, substeps: int, layout: PlantLayout = SKID_STEER
     )
 
 
-_COMPILED: dict[tuple[str, float, int | None, bool, str], tuple[ca.Function, str]] = {}
+_COMPILED: dict[tuple[str, float, int | None, bool, PlantLayout, str], tuple[ca.Function, str]] = {}
 
 
 def compile_period(
@@ -278,11 +305,13 @@ def compile_period(
     substeps: int | None = 1,
     jit: bool = True,
     layout: PlantLayout = SKID_STEER,
+    jacobian: str = "substep",
 ) -> tuple[ca.Function, str]:
     """The period Function, compiled to C if ``jit`` and a C compiler works; cached per process
     and, compiled, per machine (:mod:`~loader_model.simulation.compiled`). ``substeps`` None:
     the substeps chosen by their error estimate
-    (:func:`~loader_model.simulation.adaptive.adaptive_period_function`).
+    (:func:`~loader_model.simulation.adaptive.adaptive_period_function`, one Jacobian per
+    substep); ``jacobian``: :data:`JACOBIAN_CHOICES` (:func:`period_function`).
 
     Returns
     -------
@@ -290,14 +319,17 @@ def compile_period(
         The Function and its backend, ``"jit"`` (compiled C) or ``"sx"`` (the fallback when
         compiling fails).
     """
-    key = (controller.serialize(), float(period_s), substeps, bool(jit), layout)
+    if jacobian not in JACOBIAN_CHOICES or (substeps is None and jacobian != "substep"):
+        allowed = "'substep'" if substeps is None else ", ".join(JACOBIAN_CHOICES)
+        raise ValueError(f"jacobian = {jacobian!r} with substeps = {substeps}; allowed: {allowed}")
+    key = (controller.serialize(), float(period_s), substeps, bool(jit), layout, jacobian)
     if key not in _COMPILED:
         if substeps is None:  # error-controlled substeps
             from loader_model.simulation.adaptive import adaptive_period_function
 
             period = adaptive_period_function(controller, period_s, layout)
         else:
-            period = period_function(controller, period_s, int(substeps), layout)
+            period = period_function(controller, period_s, int(substeps), layout, jacobian)
         compiled, backend = period, "sx"
         if jit:
             try:

@@ -20,6 +20,8 @@ the chosen substeps' residual measured 2.0e-4 / 1.8e-4 of the largest term (empt
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import pytest
 
@@ -52,27 +54,36 @@ def _course(name: str):
     return iso8608_course("D", 20.0, length_m=60.0, seed=1)
 
 
-def _errors(course: str, load: str, controller: str) -> tuple[np.ndarray, np.ndarray]:
-    """(chosen substeps, four fixed substeps): the seat signals' normalised r.m.s. errors."""
+#: The steppings compared (simulate's substeps, jacobian): the chosen substeps, the default four
+#: fixed substeps and four fixed substeps sharing their period's Jacobian (Rosenbrock-W).
+STEPPINGS = {"chosen": (None, "substep"), "fixed": (4, "substep"), "period": (4, "period")}
+
+
+@functools.cache
+def _errors(course: str, load: str, controller: str) -> dict[str, np.ndarray]:
+    """The seat signals' normalised r.m.s. errors of each of :data:`STEPPINGS` (kept: two tests
+    read them)."""
     params = plant_for(controller, load)
     road = course_input(_course(course), params)
     control = controller_arguments(controller, load, params)
     reference = reference_simulation(road, params, rtol=1e-10, **control)
     want = reference["y"][:, [OUTPUT_NAMES.index(name) for name in SEAT]]
     scale = np.sqrt(np.mean((want - want[0]) ** 2, axis=0))
-    errors = []
-    for substeps in (None, 4):
-        run = simulate(road, params, substeps=substeps, **control)
+    errors = {}
+    for label, (substeps, jacobian) in STEPPINGS.items():
+        run = simulate(road, params, substeps=substeps, jacobian=jacobian, **control)
         got = np.column_stack([run[name] for name in SEAT])
-        errors.append(np.sqrt(np.mean((got - want) ** 2, axis=0)) / scale)
-    return errors[0], errors[1]
+        errors[label] = np.sqrt(np.mean((got - want) ** 2, axis=0)) / scale
+    return errors
 
 
 @pytest.mark.slow  # 18 CVODES references at rtol 1e-10: about 10-25 s each on an idle core
-def test_the_chosen_substeps_hold_the_accuracy_of_four_fixed_ones() -> None:
+@pytest.mark.parametrize("stepping", ["chosen", "period"])
+def test_the_stepping_holds_the_accuracy_of_four_fixed_substeps(stepping: str) -> None:
     ratios, lines = [], []
     for case in _cases():
-        chosen, fixed = _errors(*case)
+        errors = _errors(*case)
+        chosen, fixed = errors[stepping], errors["fixed"]
         ratio = chosen / fixed
         ratios.extend(ratio)
         lines.append(f"{case}: {np.round(100 * chosen, 3)} % vs {np.round(100 * fixed, 3)} %")
@@ -81,17 +92,18 @@ def test_the_chosen_substeps_hold_the_accuracy_of_four_fixed_ones() -> None:
     assert np.median(ratios) <= 1.1, "\n".join(lines)
 
 
-@pytest.mark.slow  # two whole-course runs each way
+@pytest.mark.slow  # three whole-course runs each way
 @pytest.mark.parametrize("load", ["empty", "full"])
 def test_the_energy_residual_is_no_worse_than_four_fixed_substeps(load: str) -> None:
     params = plant_for("passive", load)
     road = course_input(paper_course(9.0), params)
     residual = {
-        substeps: abs(
+        label: abs(
             simulated_energy_balance(
-                simulate(road, params, substeps=substeps), road, params
+                simulate(road, params, substeps=substeps, jacobian=jacobian), road, params
             ).relative_residual
         )
-        for substeps in (None, 4)
+        for label, (substeps, jacobian) in STEPPINGS.items()
     }
-    assert residual[None] <= 1.5 * residual[4] + 1e-5, residual
+    for label in ("chosen", "period"):
+        assert residual[label] <= 1.5 * residual["fixed"] + 1e-5, residual
