@@ -54,6 +54,9 @@ SHOWN = {
         "--output pump --no-progress",
     ): "bound_pump_sizing_9kmh_empty.txt",
     ("performance.md", ".venv/bin/python docs/measurements/bench_quick.py"): "bench_quick.txt",
+    ("simulation.md", ".venv/bin/python docs/measurements/stepping_accuracy.py"): (
+        "stepping_accuracy.txt"
+    ),
     ("performance.md", ".venv/bin/python docs/measurements/profile_time.py"): "profile_time.txt",
     ("performance.md", "loader-model bound --bound constrained --no-progress"): (
         "bound_constrained_9kmh_empty.txt"
