@@ -35,6 +35,17 @@ def _cpu() -> str:
     return f"{os.cpu_count()}-core {name}"
 
 
+def header(script: str) -> str:
+    """The first line of a kept measurement: the command, today's date, this machine and its
+    load average now."""
+    today = datetime.datetime.now(datetime.UTC).date().isoformat()
+    return (
+        f"# python docs/measurements/{script} | {today} | {_cpu()} "
+        f"({platform.system()} {platform.machine()}), shared with other jobs, load average "
+        f"{os.getloadavg()[0]:.1f} at the start"
+    )
+
+
 def main() -> int:
     """Print the quick benchmark, one figure a line, after a header line."""
     import numpy as np
@@ -42,13 +53,7 @@ def main() -> int:
     from tests import bench, bench_startup
     from tests.bench_matrix import matrix_seconds
 
-    load = os.getloadavg()[0]
-    today = datetime.datetime.now(datetime.UTC).date().isoformat()
-    print(
-        f"# python docs/measurements/bench_quick.py | {today} | {_cpu()} "
-        f"({platform.system()} {platform.machine()}), shared with other jobs, load average "
-        f"{load:.1f} at the start"
-    )
+    print(header("bench_quick.py"))
     python_start = bench._median_seconds(bench._process("-c", "pass"), 7)
     bench._report("baseline: python -c pass", python_start)
     imports = bench._median_seconds(bench._process("-c", "import loader_model"), 7)

@@ -17,10 +17,8 @@ from __future__ import annotations
 
 import contextlib
 import cProfile
-import datetime
 import io
 import os
-import platform
 import pstats
 import sys
 from pathlib import Path
@@ -91,19 +89,13 @@ def split(profile: cProfile.Profile, label: str) -> None:
 
 def main() -> int:
     """Print the period's size and the two profiles after a header line."""
-    from bench_quick import _cpu
+    from bench_quick import header
 
     from loader_model.cli import main as cli
     from loader_model.experiments.table6 import run_trials
     from loader_model.experiments.trials import trial_specs
 
-    load = os.getloadavg()[0]
-    today = datetime.datetime.now(datetime.UTC).date().isoformat()
-    print(
-        f"# python docs/measurements/profile_time.py | {today} | {_cpu()} "
-        f"({platform.system()} {platform.machine()}), shared with other jobs, load average "
-        f"{load:.1f} at the start"
-    )
+    print(header("profile_time.py"))
     period_sizes()
     specs = trial_specs(seed=0, trials=4)
     run_trials(specs, jobs=1, progress=False)  # every period compiled and loaded: warm

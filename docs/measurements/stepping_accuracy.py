@@ -13,9 +13,6 @@ share their period's Jacobian; then the ratios to the default, over all runs and
 
 from __future__ import annotations
 
-import datetime
-import os
-import platform
 import sys
 from pathlib import Path
 
@@ -27,16 +24,11 @@ sys.path.insert(0, str(ROOT / "docs" / "measurements"))
 def main() -> int:
     """Print one line per run and the ratios' summary after a header line."""
     import numpy as np
-    from bench_quick import _cpu
+    from bench_quick import header
 
     from tests.simulation.test_adaptive_accuracy import SENSITIVE, STEPPINGS, _cases, _errors
 
-    today = datetime.datetime.now(datetime.UTC).date().isoformat()
-    print(
-        f"# python docs/measurements/stepping_accuracy.py | {today} | {_cpu()} "
-        f"({platform.system()} {platform.machine()}), shared with other jobs, load average "
-        f"{os.getloadavg()[0]:.1f} at the start"
-    )
+    print(header("stepping_accuracy.py"))
     print("run: seat-pad errors (f_Px, f_Py, thetadd_1) in %, " + " | ".join(STEPPINGS))
     ratios: dict[str, list[float]] = {label: [] for label in STEPPINGS if label != "fixed"}
     for case in _cases():
