@@ -36,10 +36,11 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from loader_model.io.arrays import real_integer, real_number
+from loader_model.io.arrays import real_number
 from loader_model.io.files import read_text
 from loader_model.machines import MachineInfo
 from loader_model.parameters.checks import MAX_ROD_TO_PISTON_RATIO
+from loader_model.parameters.flat_entries import check_names, entry, schema_value
 from loader_model.parameters.hydraulics import CylinderParameters, HydraulicParameters
 from loader_model.parameters.tyres import tyre_table
 from loader_model.parameters.valve import ValveParameters, valve_table
@@ -108,26 +109,13 @@ class MachineParameters:
         return self.hydraulics["charge_pressure"]
 
 
-def _entry(where: str, name: str, raw: Any, unit: str) -> tuple[Any, str]:
-    if not isinstance(raw, dict) or set(raw) != {"value", "unit", "source"}:
-        raise ValueError(
-            f'{where}: {name}: must be {{ value = <number>, unit = {unit!r}, source = "..." }}'
-            f"; got {raw!r}"
-        )
-    if raw["unit"] != unit:
-        raise ValueError(f"{where}: {name}: unit {raw['unit']!r}; expected {unit!r}")
-    if not isinstance(raw["source"], str) or not raw["source"].strip():
-        raise ValueError(f"{where}: {name}: needs a source (where the value comes from)")
-    return raw["value"], raw["source"]
-
-
 def _model_value(where: str, info: MachineInfo, name: str, raw: Any) -> tuple[float, str]:
     if name not in info.parameter_units:
         raise ValueError(
             f"{where}: {name}: not a parameter of machine {info.name!r}; allowed: "
             f"{', '.join(info.parameter_names)}"
         )
-    value, source = _entry(where, name, raw, info.parameter_units[name])
+    value, source = entry(where, name, raw, info.parameter_units[name])
     value = real_number(f"{where}: {name}", value)
     low, high = info.parameter_ranges.get(name, (-math.inf, math.inf))
     if not (math.isfinite(value) and low <= value <= high) and name not in info.static_names:
@@ -138,35 +126,11 @@ def _model_value(where: str, info: MachineInfo, name: str, raw: Any) -> tuple[fl
     return value, source
 
 
-def _schema_value(where: str, cls: type, name: str, raw: Any) -> tuple[Any, str]:
-    meta = cls.__dataclass_fields__[name].metadata
-    value, source = _entry(where, name, raw, meta["unit"])
-    label = f"{where}: {name}"
-    value = real_integer(label, value) if meta["integer"] else real_number(label, value)
-    if not (math.isfinite(value) and meta["allowed"].contains(value)):
-        raise ValueError(
-            f"{label} = {value!r} {meta['unit']} is out of range; allowed: "
-            f"{meta['allowed'].describe()}"
-        )
-    return value, source
-
-
 def _section(where: str, raw: dict[str, Any], name: str) -> dict[str, Any]:
     table = raw.get(name)
     if not isinstance(table, dict):
         raise ValueError(f"{where}: missing table [{name}]")
     return table
-
-
-def _names(where: str, table: dict[str, Any], required: set[str], allowed: set[str]) -> None:
-    missing = sorted(required - set(table))
-    if missing:
-        raise ValueError(f"{where}: missing {', '.join(missing)}")
-    unknown = sorted(set(table) - allowed)
-    if unknown:
-        raise ValueError(
-            f"{where}: unknown {', '.join(unknown)}; allowed: {', '.join(sorted(allowed))}"
-        )
 
 
 def parse_machine_parameters(text: str, info: MachineInfo, origin: str) -> MachineParameters:
@@ -180,7 +144,7 @@ def parse_machine_parameters(text: str, info: MachineInfo, origin: str) -> Machi
         raise ValueError(f"{origin}: unknown tables {unknown}; allowed: {sorted(_SECTIONS)}")
     model_raw = _section(origin, raw, "model")
     names = set(info.parameter_names)
-    _names(f"{origin} [model]", model_raw, names - set(info.static_names), names)
+    check_names(f"{origin} [model]", model_raw, names - set(info.static_names), names)
     sources: dict[str, str] = {}
     model = {}
     for name in info.parameter_names:
@@ -193,10 +157,10 @@ def parse_machine_parameters(text: str, info: MachineInfo, origin: str) -> Machi
     cyl_raw = _section(origin, raw, "cylinders")
     fields = [f.name for f in CylinderParameters.__dataclass_fields__.values() if f.init]
     fields = [n for n in fields if n != "sources"]
-    _names(f"{origin} [cylinders]", cyl_raw, set(fields), set(fields))
+    check_names(f"{origin} [cylinders]", cyl_raw, set(fields), set(fields))
     cyl = {}
     for name in fields:
-        cyl[name], sources[f"cylinders.{name}"] = _schema_value(
+        cyl[name], sources[f"cylinders.{name}"] = schema_value(
             f"{origin} [cylinders]", CylinderParameters, name, cyl_raw[name]
         )
     if cyl["rod_diameter"] >= MAX_ROD_TO_PISTON_RATIO * cyl["piston_diameter"]:
@@ -207,21 +171,19 @@ def parse_machine_parameters(text: str, info: MachineInfo, origin: str) -> Machi
     hyd_raw = _section(origin, raw, "hydraulics")
     valve = info.circuit == "valve"
     hyd_names = VALVE_HYDRAULIC_NAMES if valve else HYDRAULIC_NAMES
-    _names(f"{origin} [hydraulics]", hyd_raw, set(hyd_names), set(hyd_names))
+    check_names(f"{origin} [hydraulics]", hyd_raw, set(hyd_names), set(hyd_names))
     hydraulics = {}
     for name in hyd_names:
-        hydraulics[name], sources[f"hydraulics.{name}"] = _schema_value(
+        hydraulics[name], sources[f"hydraulics.{name}"] = schema_value(
             f"{origin} [hydraulics]", HydraulicParameters, name, hyd_raw[name]
         )
-    tyres = tyre_table(
-        f"{origin} [tyres]", info, _section(origin, raw, "tyres"), sources, _entry, _names
-    )
+    tyres = tyre_table(f"{origin} [tyres]", info, _section(origin, raw, "tyres"), sources)
     loads: dict[str, dict[str, float]] = {}
     for case, table in raw.get("loads", {}).items():
         where = f"{origin} [loads.{case}]"
         if not isinstance(table, dict):
             raise ValueError(f"{where}: must be a table of model values")
-        _names(where, table, set(), names - set(info.static_names))
+        check_names(where, table, set(), names - set(info.static_names))
         loads[case] = {}
         for name, item in table.items():
             loads[case][name], sources[f"loads.{case}.{name}"] = _model_value(

@@ -26,12 +26,12 @@ inside the limits below and its machine description's range.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
 from loader_model.io.arrays import real_number
 from loader_model.parameters.fields import Range
+from loader_model.parameters.flat_entries import check_names, entry
 
 __all__ = [
     "TYRE_FIELDS",
@@ -125,9 +125,8 @@ def axle_envelopes(parameters: Any, axles: tuple[str, ...]) -> tuple[AxleEnvelop
     ValueError
         For a set that states no tyres for an axle (naming the missing entries).
     """
-    from loader_model.parameters.schema import LoaderParameters
-
-    if isinstance(parameters, LoaderParameters):
+    grouped = getattr(parameters, "tyres", None)
+    if hasattr(grouped, "front") and hasattr(grouped, "rear"):  # LoaderParameters
         if len(axles) != 2:
             raise ValueError(f"a grouped loader file has two axles; the machine has {axles}")
         sides = (parameters.tyres.front, parameters.tyres.rear)
@@ -151,13 +150,11 @@ def tyre_table(
     info: Any,
     table: dict[str, Any],
     sources: dict[str, str],
-    entry: Callable[[str, str, Any, str], tuple[Any, str]],
-    names: Callable[[str, dict[str, Any], set[str], set[str]], None],
 ) -> dict[str, float]:
     """The ``[tyres]`` table of a flat machine file: every name the description of ``info``
     (a :class:`~loader_model.machines.MachineInfo`) declares, each value in its range there and
-    in :data:`TYRE_LIMITS`; ``entry`` and ``names`` check a ``{ value, unit, source }`` entry
-    and the table's names as for the file's other tables. Records each source in ``sources``.
+    in :data:`TYRE_LIMITS`, each entry ``{ value, unit, source }`` as in the file's other tables
+    (:mod:`~loader_model.parameters.flat_entries`). Records each source in ``sources``.
 
     Raises
     ------
@@ -165,7 +162,7 @@ def tyre_table(
         Naming ``where``, the entry, the value and what is allowed.
     """
     declared = set(info.tyre_units)
-    names(where, table, declared, declared)
+    check_names(where, table, declared, declared)
     limits = {prefix: TYRE_LIMITS[name] for prefix, name, _ in TYRE_FIELDS}
     out = {}
     for name, unit in info.tyre_units.items():

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from loader_model.parameters.fields import Range, TypedLeaves, integer, si
+from loader_model.parameters.flat_entries import check_names, schema_value
 
 if TYPE_CHECKING:
     from loader_model.machines import MachineInfo
@@ -118,7 +119,6 @@ def valve_table(
     ValueError
         Naming the file, the entry, the value and what is allowed.
     """
-    from loader_model.parameters.machine_files import _names, _schema_value
 
     if info.circuit != "valve":
         if "valve" in raw:
@@ -136,10 +136,10 @@ def valve_table(
         )
     fields = [f.name for f in ValveParameters.__dataclass_fields__.values() if f.init]
     fields = [n for n in fields if n != "sources"]
-    _names(where, raw["valve"], set(fields), set(fields))
+    check_names(where, raw["valve"], set(fields), set(fields))
     values = {}
     for name in fields:
-        values[name], sources[f"valve.{name}"] = _schema_value(
+        values[name], sources[f"valve.{name}"] = schema_value(
             where, ValveParameters, name, raw["valve"][name]
         )
     return ValveParameters(**values)
