@@ -37,7 +37,7 @@ import numpy as np
 from loader_model.control.sensors import quantise
 from loader_model.plant.layout import SKID_STEER, PlantLayout
 from loader_model.plant.plant import plant_function
-from loader_model.simulation.stepper import _GAMMA, lu_solver, step_error_scales
+from loader_model.simulation.stepper import ros2_period, step_error_scales
 
 __all__ = [
     "DECREASE_MARGIN",
@@ -68,21 +68,10 @@ def counted_steps(period_s: float, substeps: int, layout: PlantLayout = SKID_STE
     u = ca.SX.sym("u")
     w0, w1 = ca.SX.sym("w0", n_w), ca.SX.sym("w1", n_w)
     params = ca.SX.sym("params", plant.size1_in(3))
-    step = period_s / substeps
-    scales = ca.DM(step_error_scales(layout))
-    rate = plant(x, u, w0, params)[0]
-    solve = lu_solver(ca.SX.eye(nx) - _GAMMA * step * ca.jacobian(rate, x))
-    state, error = x, None
-    for index in range(substeps):
-        w_end = w1 if index == substeps - 1 else w0 + (w1 - w0) * ((index + 1) / substeps)
-        if index:
-            w_start = w0 + (w1 - w0) * (index / substeps)
-            rate = plant(state, u, w_start, params)[0]
-        k1 = solve(rate)
-        k2 = solve(plant(state + step * k1, u, w_end, params)[0] - 2.0 * k1)
-        estimate = ca.mmax(ca.fabs(0.5 * step * (k1 + k2)) / scales)
-        error = estimate if error is None else ca.fmax(error, estimate)
-        state = state + 1.5 * step * k1 + 0.5 * step * k2
+    state, _, _, error = ros2_period(
+        plant, x, u, w0, w1, params, period_s, substeps,
+        error_scales=step_error_scales(layout), jacobian="period",
+    )  # fmt: skip
     return ca.Function(
         f"ros2_{substeps}",
         [x, u, w0, w1, params],
