@@ -35,9 +35,10 @@ def course() -> Course:
 @pytest.mark.slow
 def test_linear_bound_of_the_wheel_loader_is_below_its_baseline(wheel_loader, course) -> None:
     """On the wheel loader's own states and outputs: the LQ problem's free response (zero
-    command deviation) reads the simulated baseline (the pump holding u0) within 5 % (measured
-    0.2 %), and the linear bound lies below both by far more than that (measured 27 % below),
-    with its end condition met."""
+    command deviation) reads the simulated baseline (the pump holding u0; measured 7.8e-5
+    apart, held at 1e-3), and the linear bound lies far below both (measured 0.341 of the
+    baseline, held at 0.5), with its end condition met (measured 3.6e-12 scaled, held at 1e-9).
+    """
     road = course_input(course, wheel_loader)
     problem = bound_problem(wheel_loader, road, duration_s=3.0)
     assert problem.layout.name == WHEEL_LOADER
@@ -48,10 +49,10 @@ def test_linear_bound_of_the_wheel_loader_is_below_its_baseline(wheel_loader, co
     seat = np.column_stack([run[s] - run[s][0] for s in weighting.signals])
     baseline = weighting.a_total(seat)
     assert baseline == pytest.approx(float(run.seat_evaluation().total_m_s2), rel=1e-3)
-    assert free == pytest.approx(baseline, rel=0.05)
+    assert free == pytest.approx(baseline, rel=1e-3)
     bound = solve_linear_bound(problem)
-    assert bound.a_total_m_s2 < 0.9 * baseline
-    assert bound.a_total_m_s2 < 0.9 * free
+    assert bound.a_total_m_s2 < 0.5 * baseline
+    assert bound.a_total_m_s2 < 0.5 * free
     assert np.max(np.abs(bound.end_residual)) < 1e-9
 
 
