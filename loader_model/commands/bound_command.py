@@ -136,6 +136,7 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _run(args: argparse.Namespace, written: list[str]) -> int:
+    import math
     from pathlib import Path
 
     from loader_model.bound.problem import require_pump_circuit
@@ -159,6 +160,18 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
         raise ValueError(f"--bound {args.bound!r}: allowed: {', '.join(BOUND_KINDS)}")
     if args.duration is not None and not 0 < args.duration < float("inf"):
         raise ValueError(f"--duration {args.duration!r}: allowed: a finite time > 0 s")
+    if args.duration is not None:
+        from loader_model.iso2631.weightings import settling_time_s
+
+        settle = max(settling_time_s(name) for name in ("Wd", "Wk", "We"))
+        hold_s = args.hold_ms * 1e-3  # the horizon is rounded down to whole intervals
+        shortest = math.ceil(settle / hold_s - 1e-9) * hold_s
+        if args.duration < shortest - 1e-9:
+            raise ValueError(
+                f"--duration {args.duration:g}: allowed: at least {shortest:g} s (whole "
+                f"--hold-ms intervals over the {settle:.3f} s the ISO 2631-1 weightings of "
+                "a_total settle in, Eq. 49, 50)"
+            )
     if args.factors is not None and not args.pump_sizing:
         raise ValueError(f"--factors {args.factors!r}: allowed only with --pump-sizing")
     if args.pump_sizing:
