@@ -108,7 +108,7 @@ def test_a_refined_period_of_the_rollout_is_the_machines(which, course, request,
     """With every period's error estimate over the limit, each period of the rollout is
     integrated again finer on the machine's own plant (the rollout once passed the machine's
     name there and stopped): the same trajectory as the coarse one on the static command
-    (measured 1.3e-19 and 2.5e-18 apart at most, on states up to 1e5 Pa), held at 1e-9 of each
+    (measured 1.3e-19 and 2.5e-18 apart at most, absolute), held at 1e-9 of each
     state's largest value plus 1e-15."""
     from loader_model.bound.trajectory import rollout
     from loader_model.simulation import refinement
