@@ -1,7 +1,7 @@
 r"""The preview law in the 1 kHz simulation, its sweep over the preview length, CSV and figure.
 
-The simulator gives a controller the plant's outputs y (the machine's
-:attr:`~loader_model.plant.layout.PlantLayout.output_names`), not its state, and the preview law
+The simulator gives a controller the plant's outputs y (named by the machine's
+:class:`~loader_model.plant.layout.PlantLayout`), not its state, and the preview law
 (:mod:`~loader_model.bound.preview`) feeds back the full lifted state. Like the bound's playback
 (:mod:`~loader_model.bound.replay`) the controller holds the course table: per command interval j
 its design command u*_j (feedforward and feedback of the design's own closed loop on the linear
