@@ -30,10 +30,9 @@ import scipy.linalg
 import scipy.sparse
 import scipy.sparse.linalg
 
-from loader_model.bound.problem import PATH_SIGNALS, BoundProblem
+from loader_model.bound.problem import PATH_SIGNALS, BoundProblem, pump_states
 from loader_model.bound.weighting import SeatWeighting, seat_weighting
 from loader_model.plant.linear import linearise_plant
-from loader_model.plant.plant import EXOGENOUS_NAMES
 
 __all__ = ["LinearBound", "LinearQuadratic", "linear_quadratic", "solve_kkt", "solve_riccati"]
 
@@ -75,9 +74,11 @@ class LinearBound:
 def _sampled_plant(problem: BoundProblem, weighting: SeatWeighting) -> tuple[np.ndarray, ...]:
     """Per-sample z_{k+1} = A z + B u + F0 w_k + F1 w_{k+1}, residual r = H z + G w (scaled)."""
     plant = problem.plant
-    system = linearise_plant(plant.params, plant.x0, plant.u0).state_space(exogenous=True)
+    linearisation = linearise_plant(plant.params, plant.x0, plant.u0, machine=plant.layout)
+    system = linearisation.state_space(exogenous=True)
     a, bw, c, dw = (np.asarray(m) for m in (system.A, system.B, system.C, system.D))
-    n, nw, h = a.shape[0], len(EXOGENOUS_NAMES), problem.period_s
+    n, nw, h = a.shape[0], len(plant.layout.exogenous_names), problem.period_s
+    displacement, rate = pump_states(plant.layout)
     seat = [system.output_labels.index(s) for s in weighting.signals]
     big = np.zeros((n + 1 + 2 * nw, n + 1 + 2 * nw))
     big[:n, :n], big[:n, n : n + 1 + nw] = a * h, bw * h
@@ -96,12 +97,12 @@ def _sampled_plant(problem: BoundProblem, weighting: SeatWeighting) -> tuple[np.
     gw = k @ weighting.d @ ds
     end_rows = [system.output_labels.index("x_piston")]
     end = np.vstack(
-        [c[end_rows], *(np.eye(n)[[system.state_labels.index(s)]] for s in ("V_p", "Vd_p"))]
+        [c[end_rows], *(np.eye(n)[[system.state_labels.index(s)]] for s in (displacement, rate))]
     )
     end = np.hstack([end, np.zeros((end.shape[0], nf))])
     seat_z = np.hstack([cs, np.zeros((cs.shape[0], nf))])
     rows = [system.output_labels.index(name) for name in PATH_SIGNALS]
-    path_x = np.vstack([c[rows], np.eye(n)[[system.state_labels.index("Vd_p")]]])
+    path_x = np.vstack([c[rows], np.eye(n)[[system.state_labels.index(rate)]]])
     path_z = np.hstack([path_x, np.zeros((path_x.shape[0], nf))])
     path_w = np.vstack([dw[rows, 1:], np.zeros((1, nw))])
     return az, bz, f0, f1, hz, gw, end, seat_z, ds, path_z, path_w

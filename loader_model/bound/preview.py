@@ -53,19 +53,42 @@ import scipy.linalg
 from loader_model.bound.linear import LinearQuadratic, _sampled_plant, evaluate, linear_quadratic
 from loader_model.bound.problem import BoundProblem
 from loader_model.bound.weighting import seat_weighting
+from loader_model.plant.layout import SKID_STEER, PlantLayout
 
 __all__ = [
     "FRONT_COLUMNS",
     "PreviewDesign",
     "PreviewRun",
     "evaluate_preview",
+    "front_columns",
     "preview_design",
     "preview_intervals",
 ]
 
-#: Exogenous columns read with the front axle's preview (w_A, ẇ_A and the disturbance forces);
-#: the others (w_B, ẇ_B) are the rear axle's (:data:`~loader_model.plant.plant.EXOGENOUS_NAMES`).
-FRONT_COLUMNS: tuple[int, ...] = (0, 1, 4, 5, 8, 9, 10)
+
+def front_columns(layout: PlantLayout) -> tuple[int, ...]:
+    """Exogenous columns of ``layout`` read with the front axle's preview (the front axle's road
+    w and ẇ, and the disturbance forces); the others are the rear axle's.
+
+    Raises
+    ------
+    ValueError
+        For a machine without exactly two axles (the preview knows one wheelbase).
+    """
+    axles = layout.machine.axles
+    if len(axles) != 2:
+        raise ValueError(
+            f"machine {layout.name!r} has {len(axles)} axles ({', '.join(axles)}); the preview "
+            "law previews the front axle's road and the rear one's a wheelbase later: allowed: "
+            "a machine with two axles"
+        )
+    rear = {f"{kind}_{axles[1]}{axis}" for kind in ("w", "wd") for axis in "xy"}
+    return tuple(k for k, name in enumerate(layout.exogenous_names) if name not in rear)
+
+
+#: The skid-steer's :func:`front_columns` (w_A, ẇ_A and the disturbance forces; the others,
+#: w_B and ẇ_B, are the rear axle's: :data:`~loader_model.plant.plant.EXOGENOUS_NAMES`).
+FRONT_COLUMNS: tuple[int, ...] = front_columns(SKID_STEER)
 #: Stage weight on the bound's end-condition signals (stroke position, pump displacement and rate)
 #: relative to the mean diagonal of Q (module notes: the cost alone has zeros at z = 1).
 DRIFT_WEIGHT = 1.0
@@ -200,6 +223,7 @@ def preview_design(problem: BoundProblem, drift_weight: float = DRIFT_WEIGHT) ->
     """The preview LQ law (module notes) on ``problem``'s linear plant and cost."""
     if not np.isfinite(drift_weight) or drift_weight <= 0.0:
         raise ValueError(f"drift_weight must be > 0; got {drift_weight!r}")
+    columns = front_columns(problem.layout)
     lq = linear_quadratic(problem)
     b = lq.b[:, None]
     r = np.array([[lq.r]])
@@ -208,8 +232,8 @@ def preview_design(problem: BoundProblem, drift_weight: float = DRIFT_WEIGHT) ->
     p = 0.5 * (p + p.T)
     gain = np.linalg.solve(r + b.T @ p @ b, b.T @ p @ lq.a + lq.s[None, :]).ravel()
     scaling = _scaling(problem)
-    front = _road_terms(problem, lq, FRONT_COLUMNS, scaling)
-    rear_columns = tuple(c for c in range(problem.exogenous.shape[1]) if c not in FRONT_COLUMNS)
+    front = _road_terms(problem, lq, columns, scaling)
+    rear_columns = tuple(c for c in range(problem.exogenous.shape[1]) if c not in columns)
     rear = _road_terms(problem, lq, rear_columns, scaling)
     closed = lq.a - np.outer(lq.b, gain)
     return PreviewDesign(

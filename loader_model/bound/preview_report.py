@@ -1,16 +1,16 @@
 r"""The preview law in the 1 kHz simulation, its sweep over the preview length, CSV and figure.
 
-The simulator gives a controller the plant's outputs y (:data:`~loader_model.plant.plant.
-OUTPUT_NAMES`), not its state, and the preview law (:mod:`~loader_model.bound.preview`) feeds back
-the full lifted state. Like the bound's playback (:mod:`~loader_model.bound.replay`) the
-controller holds the course table: per command interval j its design command u*_j (feedforward and
-feedback of the design's own closed loop on the linear plant) and the design's outputs y*_j at
-the node. It closes the loop on the deviation from that design trajectory, which obeys the road-free
-lifted model δz_{j+1} = A δz_j + B δu_j, δy_j = C δz_j: a steady-state Kalman filter (current
-estimator, gain L) reconstructs δz from δy = y − y*_j and the law adds δu_j = −K δẑ_j. On the linear
-plant δz = 0 and the controller is the design; on the machine it corrects what the linear model
-misses. The command is clipped to ±0.99 V_p,max (the bound problem's limit) and held over the M
-periods of each interval (the design's grid).
+The simulator gives a controller the plant's outputs y (named by the machine's
+:class:`~loader_model.plant.layout.PlantLayout`), not its state, and the preview law
+(:mod:`~loader_model.bound.preview`) feeds back the full lifted state. Like the bound's playback
+(:mod:`~loader_model.bound.replay`) the controller holds the course table: per command interval j
+its design command u*_j (feedforward and feedback of the design's own closed loop on the linear
+plant) and the design's outputs y*_j at the node. It closes the loop on the deviation from that
+design trajectory, which obeys the road-free lifted model δz_{j+1} = A δz_j + B δu_j, δy_j = C
+δz_j: a steady-state Kalman filter (current estimator, gain L) reconstructs δz from δy = y − y*_j
+and the law adds δu_j = −K δẑ_j. On the linear plant δz = 0 and the controller is the design; on
+the machine it corrects what the linear model misses. The command is clipped to ±0.99 V_p,max (the
+bound problem's limit) and held over the M periods of each interval (the design's grid).
 """
 
 from __future__ import annotations
@@ -26,8 +26,8 @@ import scipy.linalg
 from loader_model.bound.preview import PreviewDesign, PreviewRun
 from loader_model.bound.problem import BoundProblem
 from loader_model.io.export import write_atomically
+from loader_model.plant.layout import SKID_STEER, PlantLayout
 from loader_model.plant.linear import linearise_plant
-from loader_model.plant.plant import OUTPUT_NAMES
 from loader_model.simulation.result import SimulationResult
 from loader_model.simulation.scenario import Scenario, closed_loop
 from loader_model.simulation.simulator import simulate
@@ -36,6 +36,7 @@ from loader_model.simulation.travel import RoadInput
 __all__ = [
     "MEASURED",
     "PreviewSweep",
+    "measured_outputs",
     "plot_sweep",
     "preview_controller",
     "preview_scenario",
@@ -43,24 +44,33 @@ __all__ = [
     "write_csv",
 ]
 
-#: Plant outputs the controller's estimator reads (velocities, pressures, stroke, displacement,
-#: tyre forces, seat).
-MEASURED: tuple[str, ...] = (
-    "xd_H", "yd_H", "thetad_1", "phi", "p_A", "p_B", "x_piston", "V_p", "F_Ay", "F_By",
-    "f_Px", "f_Py", "thetadd_1",
-)  # fmt: skip
+
+def measured_outputs(layout: PlantLayout) -> tuple[str, ...]:
+    """Plant outputs of ``layout`` the controller's estimator reads: velocities, boom angle,
+    pressures, stroke, displacement, every axle's tyre force, the seat."""
+    tyres = tuple(f"F_{axle}y" for axle in layout.machine.axles)
+    return (
+        "xd_H", "yd_H", "thetad_1", "phi", "p_A", "p_B", "x_piston", layout.actuator_state,
+        *tyres, "f_Px", "f_Py", "thetadd_1",
+    )  # fmt: skip
+
+
+#: The skid-steer's :func:`measured_outputs`.
+MEASURED: tuple[str, ...] = measured_outputs(SKID_STEER)
 
 
 @cache
-def preview_controller(count: int, states: int) -> ca.Function:
+def preview_controller(count: int, states: int, layout: PlantLayout = SKID_STEER) -> ca.Function:
     """The controller ``(z, y, settings) -> (z_next, u)`` (module notes) for ``count`` command
     intervals and ``states`` lifted states; z = (k, u held, δẑ), settings = (M, u*_j with y*_j
     per interval, K, L, A, B (matrices column-major), output scales, command scale, command
     limit). The command is clipped to the pump's limit and the estimator is given the clipped
-    deviation (so a saturating pump does not wind the estimate up)."""
-    ny, nz = len(MEASURED), states
+    deviation (so a saturating pump does not wind the estimate up). ``layout``: the machine,
+    whose :func:`measured_outputs` the estimator reads."""
+    names = measured_outputs(layout)
+    ny, nz = len(names), states
     z = ca.SX.sym("z", 2 + nz)
-    y = ca.SX.sym("y", len(OUTPUT_NAMES))
+    y = ca.SX.sym("y", len(layout.output_names))
     sizes = [1, count * (1 + ny), nz, nz * ny, nz * nz, nz, ny, 1, 1]
     settings = ca.SX.sym("settings", sum(sizes))
     parts = ca.vertsplit(settings, list(np.cumsum([0, *sizes])))
@@ -70,7 +80,7 @@ def preview_controller(count: int, states: int) -> ca.Function:
     row = rows[-1]
     for j in range(count - 2, -1, -1):
         row = ca.if_else(index <= j, rows[j], row)
-    measured = ca.vertcat(*(y[OUTPUT_NAMES.index(name)] for name in MEASURED))
+    measured = ca.vertcat(*(y[layout.output_names.index(name)] for name in names))
     innovation = (measured - row[1:]) / y_scale
     estimate = z[2:] + ca.reshape(l_gain, nz, ny) @ innovation
     command = ca.fmin(ca.fmax(row[0] - u_scale * ca.dot(k_gain, estimate), -limit), limit)
@@ -86,10 +96,11 @@ def preview_controller(count: int, states: int) -> ca.Function:
 
 
 def _output_map(design: PreviewDesign, problem: BoundProblem) -> tuple[np.ndarray, np.ndarray]:
-    """C (scaled lifted state) and D (exogenous) of :data:`MEASURED`."""
+    """C (scaled lifted state) and D (exogenous) of :func:`measured_outputs`."""
     plant = problem.plant
-    system = linearise_plant(plant.params, plant.x0, plant.u0).state_space(exogenous=True)
-    rows = [system.output_labels.index(name) for name in MEASURED]
+    linearisation = linearise_plant(plant.params, plant.x0, plant.u0, machine=plant.layout)
+    system = linearisation.state_space(exogenous=True)
+    rows = [system.output_labels.index(name) for name in measured_outputs(plant.layout)]
     c, d = np.asarray(system.C)[rows], np.asarray(system.D)[rows, 1:]
     n = c.shape[1]
     lifted = np.zeros((len(rows), design.lq.a.shape[0]))
@@ -111,11 +122,12 @@ def preview_scenario(
     plant, lq = problem.plant, design.lq
     c, d = _output_map(design, problem)
     nodes = problem.exogenous[: problem.periods : problem.hold_periods]
-    y0 = np.array([plant.output(name) for name in MEASURED])
+    names = measured_outputs(plant.layout)
+    y0 = np.array([plant.output(name) for name in names])
     y_star = y0 + run.states[:-1] @ c.T + nodes @ d.T
     scale = np.maximum(np.max(np.abs(y_star - y0), axis=0), 1e-9 * (1.0 + np.abs(y0)))
     c_n = c / scale[:, None]
-    nz, ny = lq.a.shape[0], len(MEASURED)
+    nz, ny = lq.a.shape[0], len(names)
     w, v = model_error**2 * np.eye(nz), sensor_error**2 * np.eye(ny)
     p = scipy.linalg.solve_discrete_are(lq.a.T, c_n.T, w, v)
     gain = p @ c_n.T @ np.linalg.inv(c_n @ p @ c_n.T + v)
@@ -124,7 +136,7 @@ def preview_scenario(
         [[problem.hold_periods], table.ravel(), design.gain, gain.ravel("F"), lq.a.ravel("F"),
          lq.b, scale, [lq.u_scale, problem.u_bounds[1]]]
     )  # fmt: skip
-    controller = preview_controller(run.command.size, nz)
+    controller = preview_controller(run.command.size, nz, plant.layout)
     return closed_loop(plant, controller, settings, np.concatenate([[0.0, plant.u0], np.zeros(nz)]))
 
 

@@ -15,6 +15,11 @@ Start: the static equilibrium (x0, u0; :mod:`~loader_model.plant.equilibrium`), 
 End: the boom back at its static stroke position, the pump at its static displacement and at
 rest (V_p = V_p0, V̇_p = 0); the chassis and the oil settle by themselves during the course's
 settle time (their end values are reported, not imposed: the tyre anchors are not controllable).
+
+Every index comes from the plant's machine (:class:`~loader_model.plant.layout.PlantLayout` of
+the scenario): its states, outputs and limits, so the problem is the same for any described
+machine whose boom is driven by the pump's closed circuit. A machine with a valve-controlled
+circuit (a spool command, no pump displacement) is refused.
 """
 
 from __future__ import annotations
@@ -24,7 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from loader_model.plant.components import ATMOSPHERIC_PRESSURE_PA
-from loader_model.plant.plant import OUTPUT_NAMES, STATE_NAMES
+from loader_model.plant.layout import CIRCUITS, PlantLayout
 from loader_model.plant.scenario import PlantScenario
 from loader_model.simulation.controllers import CONTROLLER_PERIOD_S
 from loader_model.simulation.simulator import exogenous_table
@@ -37,6 +42,8 @@ __all__ = [
     "PATH_SIGNALS",
     "BoundProblem",
     "bound_problem",
+    "pump_states",
+    "require_pump_circuit",
 ]
 
 #: Controller periods per command value (10 ms: 50 Hz command bandwidth, above Fig. 9's pump).
@@ -97,14 +104,42 @@ class BoundProblem:
         return self.periods * self.period_s
 
     @property
+    def layout(self) -> PlantLayout:
+        """The plant's machine (its states, outputs and limits)."""
+        return self.plant.layout
+
+    @property
     def end_targets(self) -> dict[str, float]:
         """The end conditions: plant signal name -> static value (module notes)."""
-        x0 = self.plant.x0
+        x0, layout = self.plant.x0, self.plant.layout
+        displacement, rate = pump_states(layout)
         return {
             "x_piston": self.plant.output("x_piston"),
-            "V_p": float(x0[STATE_NAMES.index("V_p")]),
-            "Vd_p": float(x0[STATE_NAMES.index("Vd_p")]),
+            displacement: float(x0[layout.index(displacement)]),
+            rate: float(x0[layout.index(rate)]),
         }
+
+
+def require_pump_circuit(layout: PlantLayout, what: str = "the bound") -> None:
+    """Refuse a machine whose boom is not driven by the pump's closed circuit.
+
+    Raises
+    ------
+    ValueError
+        In one line naming the machine, its circuit and what is allowed.
+    """
+    if layout.circuit != "pump":
+        raise ValueError(
+            f"machine {layout.name!r} has the {layout.circuit} circuit; {what} is built on the "
+            "pump's displacement and its limits: allowed: a machine with the pump circuit "
+            '([circuit] kind = "pump")'
+        )
+
+
+def pump_states(layout: PlantLayout) -> tuple[str, str]:
+    """The names of the pump's displacement and its rate among ``layout``'s states."""
+    state, rate, *_ = CIRCUITS[layout.circuit]
+    return state, rate
 
 
 def _positive_parameter(plant: PlantScenario, name: str) -> float:
@@ -142,14 +177,16 @@ def bound_problem(
     ------
     ValueError
         Naming the argument: a horizon too long for ``max_intervals`` or shorter than two
-        intervals, ``hold_periods`` out of range, a pump limit (V_p,max, V̇_p,max) of zero.
+        intervals, ``hold_periods`` out of range, a pump limit (V_p,max, V̇_p,max) of zero, a
+        machine without the pump circuit (:func:`require_pump_circuit`).
     """
+    require_pump_circuit(plant.layout)
     if isinstance(hold_periods, bool) or not isinstance(hold_periods, int | np.integer):
         raise ValueError(f"hold_periods must be an integer; got {hold_periods!r}")
     if not 1 <= hold_periods <= 100:
         raise ValueError(f"hold_periods must be in [1, 100]; got {hold_periods}")
-    v_max = _positive_parameter(plant, "V_p_max")
-    vd_max = _positive_parameter(plant, "Vd_p_max")
+    v_max = _positive_parameter(plant, plant.layout.command_limit)
+    vd_max = _positive_parameter(plant, plant.layout.rate_limit)
     _positive_parameter(plant, "omega_p")
     period_s = CONTROLLER_PERIOD_S
     total_s = road.duration_s if duration_s is None else float(duration_s)
@@ -171,9 +208,10 @@ def bound_problem(
     relief = plant.parameter("p_relief")
     lower = {"p_A": -ATMOSPHERIC_PRESSURE_PA, "p_B": -ATMOSPHERIC_PRESSURE_PA, "x_piston": 0.0}
     upper = {"p_A": relief, "p_B": relief, "x_piston": stroke}
+    outputs = plant.layout.output_names
     for signal in PATH_SIGNALS:
-        if signal not in OUTPUT_NAMES:  # pragma: no cover - a plant without the signal
-            raise ValueError(f"plant output {signal!r} is missing; outputs: {OUTPUT_NAMES}")
+        if signal not in outputs:  # pragma: no cover - a plant without the signal
+            raise ValueError(f"plant output {signal!r} is missing; outputs: {outputs}")
     return BoundProblem(
         plant=plant,
         exogenous=exogenous_table(road, time_s),

@@ -18,7 +18,7 @@ import casadi as ca
 import numpy as np
 
 from loader_model.bound.trajectory import BOUND_SUBSTEPS
-from loader_model.plant.plant import OUTPUT_NAMES
+from loader_model.plant.layout import SKID_STEER, PlantLayout
 from loader_model.plant.scenario import PlantScenario
 from loader_model.simulation.result import SimulationResult
 from loader_model.simulation.scenario import closed_loop
@@ -29,10 +29,11 @@ __all__ = ["playback_controller", "replay"]
 
 
 @cache
-def playback_controller(count: int) -> ca.Function:
-    """The controller that plays back a table of ``count`` commands (module notes)."""
+def playback_controller(count: int, layout: PlantLayout = SKID_STEER) -> ca.Function:
+    """The controller that plays back a table of ``count`` commands (module notes) on the plant
+    of the machine ``layout`` (it reads none of the outputs)."""
     z = ca.SX.sym("z", 1)
-    y = ca.SX.sym("y", len(OUTPUT_NAMES))
+    y = ca.SX.sym("y", len(layout.output_names))
     settings = ca.SX.sym("settings", count + 1)
     index = ca.floor((z[0] + 0.5) / settings[0])
     u = settings[count]
@@ -52,8 +53,7 @@ def replay(
 ) -> SimulationResult:
     """Simulate ``plant`` over ``road`` with ``command`` held ``hold_periods`` periods each."""
     table = np.asarray(command, dtype=float).ravel()
-    scenario = closed_loop(
-        plant, playback_controller(table.size), np.concatenate([[hold_periods], table]), [0.0]
-    )
+    controller = playback_controller(table.size, plant.layout)
+    scenario = closed_loop(plant, controller, np.concatenate([[hold_periods], table]), [0.0])
     duration_s = table.size * hold_periods * period_s
     return simulate(road, scenario, duration_s=duration_s, substeps=BOUND_SUBSTEPS)

@@ -39,11 +39,10 @@ from dataclasses import replace
 
 import numpy as np
 
-from loader_model.bound.problem import PATH_SIGNALS, BoundProblem
+from loader_model.bound.problem import PATH_SIGNALS, BoundProblem, pump_states
 from loader_model.bound.stage_form import StageQP
 from loader_model.bound.trajectory import Linearisation, Trajectory
 from loader_model.bound.weighting import SeatWeighting
-from loader_model.plant.plant import OUTPUT_NAMES, STATE_NAMES
 
 __all__ = ["INTERVALS_PER_STAGE", "corrected_qp", "end_values", "stage_block", "stage_qp"]
 
@@ -78,11 +77,12 @@ def stage_qp(
             f"intervals_per_stage must divide the {n_int} command intervals; got {b_int}"
         )
     n, span = n_int // b_int, b_int * m  # stages, periods per stage
-    nx, nf, na = len(STATE_NAMES), weighting.order, len(weighting.axes)
+    states, outputs = problem.layout.state_names, problem.layout.output_names
+    nx, nf, na = len(states), weighting.order, len(weighting.axes)
     nz = nx + nf
-    seat_rows = [OUTPUT_NAMES.index(s) for s in weighting.signals]
-    path_outputs = [OUTPUT_NAMES.index(s) for s in PATH_SIGNALS]
-    rate = STATE_NAMES.index("Vd_p")
+    seat_rows = [outputs.index(s) for s in weighting.signals]
+    path_outputs = [outputs.index(s) for s in PATH_SIGNALS]
+    rate = states.index(pump_states(problem.layout)[1])
     n_p = len(PATH_SIGNALS) + 1
     k_diag = np.diag(weighting.k_factors)
     residual = weighting.weighted(trajectory.seat()).reshape(n, span * na)
@@ -126,10 +126,10 @@ def stage_qp(
     end_rows = []
     for name in problem.end_targets:
         row = np.zeros(nz)
-        if name in STATE_NAMES:
-            row[STATE_NAMES.index(name)] = 1.0
+        if name in states:
+            row[states.index(name)] = 1.0
         else:
-            row[:nx] = linearisation.c[count, OUTPUT_NAMES.index(name)]
+            row[:nx] = linearisation.c[count, outputs.index(name)]
         end_rows.append(row * d)
     end_target = np.array(list(problem.end_targets.values())) - end_values(problem, trajectory)
     v = (trajectory.command / u_scale).reshape(n, b_int)
@@ -151,9 +151,10 @@ def stage_qp(
 def end_values(problem: BoundProblem, trajectory: Trajectory) -> np.ndarray:
     """The end condition's signals at the end of ``trajectory`` (states or outputs), in the
     order of :attr:`~loader_model.bound.problem.BoundProblem.end_targets`."""
+    states, outputs = problem.layout.state_names, problem.layout.output_names
     return np.array([
-        trajectory.states[-1, STATE_NAMES.index(name)] if name in STATE_NAMES
-        else trajectory.outputs[-1, OUTPUT_NAMES.index(name)]
+        trajectory.states[-1, states.index(name)] if name in states
+        else trajectory.outputs[-1, outputs.index(name)]
         for name in problem.end_targets
     ])  # fmt: skip
 

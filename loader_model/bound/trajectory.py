@@ -41,9 +41,9 @@ from functools import cache
 import casadi as ca
 import numpy as np
 
-from loader_model.bound.problem import PATH_SIGNALS, BoundProblem
-from loader_model.machines import DEFAULT_MACHINE
-from loader_model.plant.plant import OUTPUT_NAMES, STATE_NAMES, plant_function
+from loader_model.bound.problem import PATH_SIGNALS, BoundProblem, pump_states
+from loader_model.plant.layout import SKID_STEER, PlantLayout
+from loader_model.plant.plant import plant_function
 from loader_model.simulation import refinement
 from loader_model.simulation.compiled import CompilationError, cached_function, compiled_function
 from loader_model.simulation.controllers import CONTROLLER_PERIOD_S, hold_command_controller
@@ -81,41 +81,46 @@ class Trajectory:
         (K_s + 1, nx) x_k.
     outputs : numpy.ndarray
         (K_s + 1, ny) y_k (the last at the end state).
+    layout : PlantLayout
+        The machine: the names of the states and outputs.
     """
 
     command: np.ndarray
     states: np.ndarray
     outputs: np.ndarray
+    layout: PlantLayout
 
     def seat(self) -> np.ndarray:
         """(K_s, axes) seat samples minus their first (static) value, as the report reads them."""
-        rows = [OUTPUT_NAMES.index(s) for s in seat_signal_names().values()]
+        names = self.layout.output_names
+        rows = [names.index(s) for s in seat_signal_names().values()]
         values = self.outputs[:-1, rows]
         return values - values[0]
 
     def path(self) -> np.ndarray:
         """(K_s, len(PATH_SIGNALS) + 1) the bounded outputs and V̇_p at every period."""
-        rows = [OUTPUT_NAMES.index(s) for s in PATH_SIGNALS]
-        rate = self.states[:-1, STATE_NAMES.index("Vd_p")]
+        rows = [self.layout.output_names.index(s) for s in PATH_SIGNALS]
+        rate = self.states[:-1, self.layout.index(pump_states(self.layout)[1])]
         return np.column_stack([self.outputs[:-1, rows], rate])
 
 
 @cache
-def _period() -> ca.Function:
-    return compile_period(hold_command_controller(), substeps=BOUND_SUBSTEPS)[0]
+def _period(layout: PlantLayout) -> ca.Function:
+    controller = hold_command_controller(layout)
+    return compile_period(controller, substeps=BOUND_SUBSTEPS, layout=layout)[0]
 
 
 @cache
-def _rolled(chunk: int) -> ca.Function:
-    return _period().mapaccum("bound_roll", chunk)
+def _rolled(layout: PlantLayout, chunk: int) -> ca.Function:
+    return _period(layout).mapaccum("bound_roll", chunk)
 
 
 @cache
-def linearised_period() -> ca.Function:
-    """``lin(x, u, w0, w1, params) -> (x_next, y, A, B, C)`` of the simulator's period (notes),
-    every output dense (:func:`linearise` reads them as arrays)."""
-    plant = plant_function()
-    nx, nw = len(STATE_NAMES), plant.size1_in(2)
+def linearised_period(layout: PlantLayout = SKID_STEER) -> ca.Function:
+    """``lin(x, u, w0, w1, params) -> (x_next, y, A, B, C)`` of the simulator's period (notes)
+    for the machine ``layout``, every output dense (:func:`linearise` reads them as arrays)."""
+    plant = plant_function(layout)
+    nx, nw = len(layout.state_names), plant.size1_in(2)
     x, u = ca.SX.sym("x", nx), ca.SX.sym("u")
     w0, w1 = ca.SX.sym("w0", nw), ca.SX.sym("w1", nw)
     params = ca.SX.sym("params", plant.size1_in(3))
@@ -132,28 +137,30 @@ def linearised_period() -> ca.Function:
     )
 
 
-#: The mapped period of :func:`linearise`: "compiled" once loaded or compiled; "interpreted"
-#: while the cache does not hold it; "compile failed" when compiling was tried and failed.
-_MAPPED: dict[str, ca.Function | None] = {}
+#: The mapped period of :func:`linearise` per machine: "compiled" once loaded or compiled;
+#: "interpreted" while the cache does not hold it; "compile failed" when compiling was tried
+#: and failed.
+_MAPPED: dict[PlantLayout, dict[str, ca.Function | None]] = {}
 
 
-def _mapped_linearised_period(compile_missing: bool) -> ca.Function:
+def _mapped_linearised_period(layout: PlantLayout, compile_missing: bool) -> ca.Function:
     """:func:`linearised_period` mapped over chunks on two threads: compiled to C (8 times
     faster than CasADi's virtual machine) when the cache holds the library or
     ``compile_missing``, else interpreted (also when no C compiler works)."""
-    if "compiled" not in _MAPPED:
-        may_compile = compile_missing and "compile failed" not in _MAPPED
-        if may_compile or "interpreted" not in _MAPPED:
-            function = linearised_period()
+    mapped = _MAPPED.setdefault(layout, {})
+    if "compiled" not in mapped:
+        may_compile = compile_missing and "compile failed" not in mapped
+        if may_compile or "interpreted" not in mapped:
+            function = linearised_period(layout)
             try:
                 compiled = (compiled_function if may_compile else cached_function)(function)
             except CompilationError:
-                compiled, _MAPPED["compile failed"] = None, None
+                compiled, mapped["compile failed"] = None, None
             if compiled is not None:
-                _MAPPED["compiled"] = compiled.map(_CHUNK, "thread", 2)
-            elif "interpreted" not in _MAPPED:
-                _MAPPED["interpreted"] = function.map(_CHUNK, "thread", 2)
-    return _MAPPED["compiled"] if "compiled" in _MAPPED else _MAPPED["interpreted"]
+                mapped["compiled"] = compiled.map(_CHUNK, "thread", 2)
+            elif "interpreted" not in mapped:
+                mapped["interpreted"] = function.map(_CHUNK, "thread", 2)
+    return mapped["compiled"] if "compiled" in mapped else mapped["interpreted"]
 
 
 def rollout(problem: BoundProblem, command: np.ndarray) -> Trajectory:
@@ -166,10 +173,10 @@ def rollout(problem: BoundProblem, command: np.ndarray) -> Trajectory:
     command = np.asarray(command, dtype=float).ravel()
     if command.size != problem.intervals:
         raise ValueError(f"command must have {problem.intervals} values; got {command.size}")
-    count, plant = problem.periods, problem.plant
+    count, plant, layout = problem.periods, problem.plant, problem.layout
     exo = problem.exogenous
     u_k = np.repeat(command, problem.hold_periods)
-    nx, ny, nw = len(STATE_NAMES), len(OUTPUT_NAMES), exo.shape[1]
+    nx, ny, nw = len(layout.state_names), len(layout.output_names), exo.shape[1]
     states, outputs = np.empty((count + 1, nx)), np.empty((count + 1, ny))
     # column-major CasADi matrices read as C-order (chunk, n) arrays
     carry = np.concatenate([plant.x0, [plant.u0]])
@@ -178,7 +185,7 @@ def rollout(problem: BoundProblem, command: np.ndarray) -> Trajectory:
     settings, zeros = np.empty(_CHUNK), np.zeros((_CHUNK, ny))
     block, y_block, u_block = np.empty((_CHUNK, nx + 1)), np.empty((_CHUNK, ny)), np.empty(_CHUNK)
     error_block = np.empty(_CHUNK)
-    buffer, evaluate = _rolled(_CHUNK).buffer()
+    buffer, evaluate = _rolled(layout, _CHUNK).buffer()
     for index, array in enumerate((carry, w0, w1, params, settings, zeros, zeros)):
         buffer.set_arg(index, memoryview(array))
     for index, array in enumerate((block, y_block, u_block, error_block)):
@@ -194,7 +201,7 @@ def rollout(problem: BoundProblem, command: np.ndarray) -> Trajectory:
             size, index = int(failed[0]) + 1, start + int(failed[0])
             before = carry if failed[0] == 0 else block[failed[0] - 1]
             block[failed[0]] = refinement.refine_period(
-                CONTROLLER_PERIOD_S, BOUND_SUBSTEPS, DEFAULT_MACHINE, before,
+                CONTROLLER_PERIOD_S, BOUND_SUBSTEPS, layout, before,
                 block[failed[0]], exo[index], exo[index + 1], plant.params,
             )  # fmt: skip
         states[start] = carry[:nx]
@@ -204,11 +211,11 @@ def rollout(problem: BoundProblem, command: np.ndarray) -> Trajectory:
         start += size
     states[count] = carry[:nx]
     outputs[count] = np.asarray(
-        plant_function()(carry[:nx], carry[nx], exo[count], plant.params)[1]
+        plant_function(layout)(carry[:nx], carry[nx], exo[count], plant.params)[1]
     ).ravel()
     if not np.all(np.isfinite(states)):
         raise DivergedRollout("command: the simulated trajectory left the finite numbers")
-    return Trajectory(command, states, outputs)
+    return Trajectory(command, states, outputs, layout)
 
 
 @dataclass(frozen=True)
@@ -230,8 +237,9 @@ def linearise(
     compiled period if the machine's cache holds it or ``compile_missing`` (for callers that
     linearise many times, as the SQP does: its one-time compilation, about 12 s, is what
     CasADi's virtual machine takes for some 45 000 periods), else in the virtual machine."""
-    count, nx, ny = problem.periods, len(STATE_NAMES), len(OUTPUT_NAMES)
-    buffer, evaluate = _mapped_linearised_period(compile_missing).buffer()
+    layout = problem.layout
+    count, nx, ny = problem.periods, len(layout.state_names), len(layout.output_names)
+    buffer, evaluate = _mapped_linearised_period(layout, compile_missing).buffer()
     exo, params = problem.exogenous, problem.plant.params
     u_k = np.append(np.repeat(trajectory.command, problem.hold_periods), trajectory.command[-1])
     a = np.empty((count, nx, nx))

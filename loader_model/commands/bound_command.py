@@ -15,20 +15,27 @@ warm-started from the best controller's run; give ``--duration``). ``--pump-sizi
 the pump-sizing study instead of the comparison (:mod:`loader_model.bound.pump_sizing`: the
 constrained bound and the refined skyhook against V_p_max, ω_p and V̇_p,max, Table 2) and writes
 ``pump_sizing.csv`` and ``pump_sizing.png`` to ``--output``.
+
+``--machine NAME|FILE`` and ``--params FILE`` choose the machine and its parameter file, as for
+``simulate``: any described machine whose boom is driven by the pump's closed circuit (a machine
+with a valve-controlled circuit is refused). On another machine than the skid-steer the
+controllers are those ``simulate --compare`` runs (``baseline``, ``passive``,
+``virtual-accumulator`` and ``skyhook`` with Table 3's settings: the designed and refined gains
+are the skid-steer's), and the pump sizing simulates Table 3's skyhook.
 """
 
 from __future__ import annotations
 
 import argparse
+from typing import Any
 
 from loader_model.commands.common import (
-    add_machine_argument,
     add_model_arguments,
     add_progress_argument,
-    require_skid_steer,
+    layout_from_arguments,
 )
 
-__all__ = ["CONTROLLERS", "GUIDE", "HELP", "add_arguments", "run"]
+__all__ = ["CONTROLLERS", "GUIDE", "HELP", "MACHINE_CONTROLLERS", "add_arguments", "run"]
 
 HELP = "the clairvoyant bound on a course beside the baseline and every controller"
 GUIDE = "bound.md"  # its page of the user guide (docs/guide/)
@@ -43,21 +50,23 @@ CONTROLLERS = (
     "skyhook-optimised",
     "skyhook-refined",
 )
+#: Controllers on another machine than the skid-steer (the others' gains are the skid-steer's).
+MACHINE_CONTROLLERS = ("baseline", "passive", "virtual-accumulator", "skyhook")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Register the arguments of ``loader-model bound``."""
-    add_machine_argument(parser, note=" (the skid-steer only: its plant is the bound's)")
-    add_model_arguments(parser)
+    add_model_arguments(parser, machine=True)
     parser.add_argument("--course", default="paper", metavar="COURSE", help="'paper'")
     parser.add_argument(
         "--speed", type=float, default=9.0, metavar="KMH", help="speed in km/h: 9 or 18"
     )
     parser.add_argument(
         "--controllers",
-        default=",".join(CONTROLLERS),
+        default=None,
         metavar="LIST",
-        help=f"comma-separated, from {', '.join(CONTROLLERS)} (default: all of them)",
+        help=f"comma-separated, from {', '.join(CONTROLLERS)} (default: all of them); on "
+        f"another machine from {', '.join(MACHINE_CONTROLLERS)} (default: these four)",
     )
     parser.add_argument("--hold-ms", type=int, default=10, metavar="MS", help="command grid in ms")
     parser.add_argument(
@@ -102,12 +111,16 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_progress_argument(parser)
 
 
-def _controllers(text: str) -> tuple[str, ...]:
+def _controllers(text: str | None, layout: Any) -> tuple[str, ...]:
+    allowed = CONTROLLERS if layout.machine.is_default else MACHINE_CONTROLLERS
+    if text is None:
+        return allowed
     names = tuple(name.strip() for name in text.split(",") if name.strip())
-    unknown = [name for name in names if name not in CONTROLLERS]
+    unknown = [name for name in names if name not in allowed]
     if unknown or not names:
+        note = "" if layout.machine.is_default else f" on machine {layout.name!r}"
         raise ValueError(
-            f"--controllers {text!r}: unknown {unknown}; allowed: {', '.join(CONTROLLERS)}"
+            f"--controllers {text!r}: unknown{note} {unknown}; allowed: {', '.join(allowed)}"
         )
     return ("baseline", *(name for name in names if name != "baseline"))
 
@@ -123,13 +136,16 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _run(args: argparse.Namespace, written: list[str]) -> int:
+    import math
     from pathlib import Path
 
-    require_skid_steer(
-        args,
-        "the bound and the pump sizing are built on the skid-steer's plant; hydraulics, "
-        "modes, model, simulate and export-fmu take any machine",
-    )
+    from loader_model.bound.problem import require_pump_circuit
+
+    layout = layout_from_arguments(args)
+    try:
+        require_pump_circuit(layout, "the bound")
+    except ValueError as error:
+        raise ValueError(f"--machine {args.machine!r}: {error}") from None
     if args.course != "paper":
         raise ValueError(f"--course {args.course!r}: allowed: paper")
     if args.speed not in (9.0, 18.0):
@@ -144,11 +160,23 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
         raise ValueError(f"--bound {args.bound!r}: allowed: {', '.join(BOUND_KINDS)}")
     if args.duration is not None and not 0 < args.duration < float("inf"):
         raise ValueError(f"--duration {args.duration!r}: allowed: a finite time > 0 s")
+    if args.duration is not None:
+        from loader_model.iso2631.weightings import settling_time_s
+
+        settle = max(settling_time_s(name) for name in ("Wd", "Wk", "We"))
+        hold_s = args.hold_ms * 1e-3  # the horizon is rounded down to whole intervals
+        shortest = math.ceil(settle / hold_s - 1e-9) * hold_s
+        if args.duration < shortest - 1e-9:
+            raise ValueError(
+                f"--duration {args.duration:g}: allowed: at least {shortest:g} s (whole "
+                f"--hold-ms intervals over the {settle:.3f} s the ISO 2631-1 weightings of "
+                "a_total settle in, Eq. 49, 50)"
+            )
     if args.factors is not None and not args.pump_sizing:
         raise ValueError(f"--factors {args.factors!r}: allowed only with --pump-sizing")
     if args.pump_sizing:
-        return _pump_sizing(args, written)
-    names = _controllers(args.controllers)
+        return _pump_sizing(args, layout, written)
+    names = _controllers(args.controllers, layout)
     output = None
     if args.output is not None:
         output = Path(args.output)
@@ -164,7 +192,7 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
     from loader_model.simulation.courses import paper_course
     from loader_model.simulation.simulator import course_input
 
-    scenarios = _scenarios(names, args.params, args.load)
+    scenarios = _scenarios(names, args.params, args.load, layout)
     plant = scenarios["baseline"].plant
     course = paper_course(args.speed)
     road = course_input(course, plant)
@@ -178,7 +206,7 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
         )
     except ValueError as error:
         raise ValueError(f"--course/--speed/--hold-ms: {error}") from None
-    title = f"{course.name}; load {args.load}"
+    title = _title(layout, f"{course.name}; load {args.load}")
     comparison = compare(
         problem,
         road,
@@ -225,14 +253,19 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
     return 0
 
 
-def _scenarios(names: tuple[str, ...], params: str | None, load: str) -> dict:
-    """The closed loops of ``names`` on the loader ``params`` and ``load``."""
+def _title(layout: Any, title: str) -> str:
+    """``title``, prefixed with the machine's name on another machine than the skid-steer."""
+    return title if layout.machine.is_default else f"{layout.name}: {title}"
+
+
+def _scenarios(names: tuple[str, ...], params: str | None, load: str, layout: Any) -> dict:
+    """The closed loops of ``names`` on the machine ``layout``, its ``params`` and ``load``."""
     from loader_model.control.settings import default_settings, with_gains
     from loader_model.plant.plant_parameters import PlantOptions
     from loader_model.plant.scenario import resolve_plant
     from loader_model.simulation.scenario import ride_scenario
 
-    plants = {False: resolve_plant(params, load, PlantOptions())}
+    plants = {False: resolve_plant(params, load, PlantOptions(), machine=layout)}
     if "passive" in names:
         plants[True] = plants[False].with_options(PlantOptions(accumulator=True))
     designed = {}
@@ -269,8 +302,9 @@ def _factors(text: str | None) -> tuple[float, ...]:
     return values
 
 
-def _pump_sizing(args: argparse.Namespace, written: list[str]) -> int:
-    """``--pump-sizing``: the constrained bound and the refined skyhook against pump size."""
+def _pump_sizing(args: argparse.Namespace, layout: Any, written: list[str]) -> int:
+    """``--pump-sizing``: the constrained bound and the refined skyhook (on another machine
+    Table 3's skyhook) against pump size."""
     from pathlib import Path
 
     from loader_model.bound.pump_sizing import plot_pump_sizing, pump_sizing, write_csv
@@ -286,10 +320,11 @@ def _pump_sizing(args: argparse.Namespace, written: list[str]) -> int:
     output = Path(args.output)
     if output.exists() and not output.is_dir():
         raise ValueError(f"--output {args.output!r}: not a folder")
-    plant = resolve_plant(args.params, args.load)
+    plant = resolve_plant(args.params, args.load, machine=layout)
     course = paper_course(args.speed)
     road = course_input(course, plant)
-    settings = refined_settings()
+    default = layout.machine.is_default
+    settings, label = (refined_settings(), "refined") if default else (None, "skyhook")
     rows = pump_sizing(
         plant,
         road,
@@ -301,7 +336,7 @@ def _pump_sizing(args: argparse.Namespace, written: list[str]) -> int:
     )
     print(
         f"{'parameter':<10}{'factor':>8}{'baseline':>10}{'(linear)':>10}{'bound':>10}"
-        f"{'refined':>10}{'rounds':>8}"
+        f"{label:>10}{'rounds':>8}"
     )
     for row in rows:
         print(
@@ -310,11 +345,16 @@ def _pump_sizing(args: argparse.Namespace, written: list[str]) -> int:
             f"{row.bound_rounds:>8d}"
         )
     output.mkdir(parents=True, exist_ok=True)
-    title = f"{course.name}; load {args.load}: a_total against pump size (one parameter scaled)"
+    title = _title(
+        layout, f"{course.name}; load {args.load}: a_total against pump size (one parameter scaled)"
+    )
     for path in (
         write_csv(rows, output / "pump_sizing.csv"),
         plot_pump_sizing(
-            rows, output / "pump_sizing.png", title=title, controller="skyhook-refined"
+            rows,
+            output / "pump_sizing.png",
+            title=title,
+            controller="skyhook-refined" if default else "skyhook",
         ),
     ):
         written.append(str(path))

@@ -8,6 +8,12 @@ course table and corrects the design with a Kalman filter on the plant's outputs
 :mod:`loader_model.bound.preview_report`), and prints a_total beside the non-causal LQ bound and
 the simulated baseline and refined skyhook. With ``--output DIR`` writes ``preview.csv`` and
 ``preview.png``.
+
+``--machine NAME|FILE`` and ``--params FILE`` choose the machine and its parameter file, as for
+``simulate``: any described machine with two axles whose boom is driven by the pump's closed
+circuit (a machine with a valve-controlled circuit is refused). On another machine than the
+skid-steer the simulated reference beside the baseline is Table 3's skyhook (the refined gains
+are the skid-steer's).
 """
 
 from __future__ import annotations
@@ -15,10 +21,9 @@ from __future__ import annotations
 import argparse
 
 from loader_model.commands.common import (
-    add_machine_argument,
     add_model_arguments,
     add_progress_argument,
-    require_skid_steer,
+    layout_from_arguments,
 )
 
 __all__ = ["GUIDE", "HELP", "add_arguments", "run"]
@@ -29,8 +34,7 @@ GUIDE = "bound.md"  # its page of the user guide (docs/guide/)
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Register the arguments of ``loader-model preview``."""
-    add_machine_argument(parser, note=" (the skid-steer only: its plant is the preview law's)")
-    add_model_arguments(parser)
+    add_model_arguments(parser, machine=True)
     parser.add_argument(
         "--speed", type=float, default=9.0, metavar="KMH", help="speed in km/h: 9 or 18"
     )
@@ -75,11 +79,15 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
     import numpy as np
     from tqdm import tqdm
 
-    require_skid_steer(
-        args,
-        "the preview law is designed on the skid-steer's plant; hydraulics, modes, model, "
-        "simulate and export-fmu take any machine",
-    )
+    from loader_model.bound.preview import front_columns
+    from loader_model.bound.problem import require_pump_circuit
+
+    layout = layout_from_arguments(args)
+    try:
+        require_pump_circuit(layout, "the preview law")
+        front_columns(layout)  # two axles
+    except ValueError as error:
+        raise ValueError(f"--machine {args.machine!r}: {error}") from None
     if args.speed not in (9.0, 18.0):
         raise ValueError(f"--speed {args.speed:g}: allowed: 9 or 18 km/h (the paper's course)")
     lengths = _lengths(args.preview)
@@ -103,7 +111,7 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
     from loader_model.simulation.simulator import course_input, simulate
     from loader_model.simulation.validity_check import SimulationError
 
-    plant = resolve_plant(args.params, args.load, PlantOptions())
+    plant = resolve_plant(args.params, args.load, PlantOptions(), machine=layout)
     course = paper_course(args.speed)
     road = course_input(course, plant)
     problem = bound_problem(plant, road)
@@ -112,10 +120,11 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
             preview_intervals(problem, length, road.speed_m_s, road.wheelbase_m)
         except ValueError as error:
             raise ValueError(f"--preview: {error}") from None
-    references = {
-        "baseline": ride_scenario(plant, "baseline"),
-        "skyhook-refined": ride_scenario(plant, "skyhook", refined_settings()),
-    }
+    references = {"baseline": ride_scenario(plant, "baseline")}
+    if layout.machine.is_default:
+        references["skyhook-refined"] = ride_scenario(plant, "skyhook", refined_settings())
+    else:
+        references["skyhook"] = ride_scenario(plant, "skyhook")
     steps = 2 + len(lengths) * (2 if args.simulate else 1) + len(references)
     linear, simulated, peaks, totals = [], [], [], {}
     with tqdm(total=steps, desc="preview", unit="step", disable=args.no_progress) as bar:
@@ -149,7 +158,11 @@ def _run(args: argparse.Namespace, written: list[str]) -> int:
             totals[name] = float(run.seat_evaluation().total_m_s2)
             bar.update()
     sweep = PreviewSweep(
-        title=f"{course.name}; load {args.load}",
+        title=(
+            f"{course.name}; load {args.load}"
+            if layout.machine.is_default
+            else f"{layout.name}: {course.name}; load {args.load}"
+        ),
         preview_m=np.array(lengths),
         linear=np.array(linear),
         simulated=np.array(simulated) if simulated else np.full(len(lengths), np.nan),

@@ -20,6 +20,10 @@ from tests.robustness.test_robustness_study import TINY
     ("argv", "message"),
     [
         (["bound", "--duration", "inf"], "--duration inf: allowed: a finite time > 0 s"),
+        (
+            ["bound", "--duration", "2"],
+            "--duration 2: allowed: at least 2.6 s (whole --hold-ms intervals over the 2.591 s",
+        ),
         (["bound", "--factors", "1,2"], "--factors '1,2': allowed only with --pump-sizing"),
         (
             ["simulate", "--course", "iso8608:C:extra"],

@@ -1,5 +1,6 @@
-"""``--machine`` on hydraulics, bound, preview and calibrate: the wheel loader's hydraulics, and a
-one-line refusal (exit code 2) where a command is built on the skid-steer only."""
+"""``--machine`` on hydraulics, bound, preview and calibrate: the wheel loader's hydraulics, its
+bound and preview, and a one-line refusal (exit code 2) where a command is built on the
+skid-steer only."""
 
 from __future__ import annotations
 
@@ -40,15 +41,33 @@ def test_hydraulics_of_the_wheel_loader(tmp_path, capsys) -> None:
     assert printed == pytest.approx(expected, rel=6e-4)
 
 
+# slow: the wheel loader's controllers simulated over 3 s (Wd of a_total needs 2.6 s) and over
+# the whole course (seconds each)
+@pytest.mark.slow
 @pytest.mark.parametrize(
-    "argv",
+    ("argv", "first"),
     [
-        ["bound", "--duration", "0.5"],
-        ["bound", "--pump-sizing", "--duration", "0.5"],
-        ["preview", "--preview", "0"],
-        ["calibrate"],
+        (["bound", "--duration", "3"], "compact_wheel_loader: paper course, 9 km/h"),
+        (["preview"], "compact_wheel_loader: paper course, 9 km/h"),
     ],
 )
+def test_bound_and_preview_run_on_the_wheel_loader(argv, first, tmp_path, capsys) -> None:
+    """Exit 0 on the wheel loader, its title first, the bound below the baseline (a bound of
+    the linear plant: below what the simulated baseline reaches on the course), files written."""
+    output = tmp_path / "out"
+    machine = ["--machine", WHEEL_LOADER, "--no-progress", "--output", str(output)]
+    assert main([*argv, *machine]) == 0
+    out = capsys.readouterr().out
+    assert out.startswith(first)
+    rows = dict(
+        re.findall(r"^(baseline|bound \(linear\)|non-causal LQ bound)\D+(\d+\.\d+)", out, re.M)
+    )
+    bound = rows.get("bound (linear)", rows.get("non-causal LQ bound"))
+    assert bound is not None and float(bound) < float(rows["baseline"]), out
+    assert sorted(path.suffix for path in output.iterdir()) == [".csv", ".png"]
+
+
+@pytest.mark.parametrize("argv", [["calibrate"]])
 @pytest.mark.parametrize("machine", [WHEEL_LOADER, str(MACHINES_DIR / f"{WHEEL_LOADER}.toml")])
 def test_skid_steer_commands_refuse_another_machine(
     argv: list[str], machine: str, tmp_path, capsys

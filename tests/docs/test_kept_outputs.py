@@ -48,6 +48,9 @@ SHOWN = {
     ("bound.md", "loader-model bound --bound constrained --no-progress"): (
         "bound_constrained_9kmh_empty.txt"
     ),
+    ("bound.md", "loader-model bound --machine compact_wheel_loader --no-progress"): (
+        "bound_compact_wheel_loader_9kmh_empty.txt"
+    ),
     (
         "bound.md",
         "loader-model bound --pump-sizing --speed 9 --load empty --duration 6 --factors 0.5,1,2 "
