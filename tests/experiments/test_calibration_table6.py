@@ -67,7 +67,7 @@ def test_the_fit_never_reads_the_held_out_cells(monkeypatch) -> None:
         return run_trial(spec)
 
     monkeypatch.setattr(table6, "run_trial", spy)
-    options = {"evaluations": 4, "design_points": 2, "trials": 1, "jobs": 1, "duration_s": 3.0}
+    options = {"evaluations": 4, "design_points": 2, "trials": 2, "jobs": 1, "duration_s": 3.0}
     honest = calibration.calibrate_table6(9.0, progress=False, **options)
     poisoned = {key: dict(cells) for key, cells in PAPER_TABLE_6.items()}
     for key in (("High", "Low"), ("High", "High")):
