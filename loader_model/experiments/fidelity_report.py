@@ -166,7 +166,12 @@ def _uncertainty_rows(uncertainty: dict[str, Any]) -> Rows:
 
 
 def budget_section(budget: dict[str, Any] | None) -> tuple[str, dict[str, Rows]]:
-    """Markdown of the budget and its tables (for the CSV files); a note if none was shipped."""
+    """Markdown of the budget and its tables (for the CSV files); a note if none was shipped.
+
+    With the calibrated steps' scatter and the plausible machines' mean-and-scatter study
+    (:mod:`~loader_model.experiments.agreement_report`) where the budget has them."""
+    from loader_model.experiments.agreement_report import agreement_text
+
     if budget is None:
         return (
             "## Fidelity budget\n\nNo budget shipped: run `make fidelity` (after "
@@ -200,7 +205,9 @@ def budget_section(budget: dict[str, Any] | None) -> tuple[str, dict[str, Rows]]
             markdown_table(tables["fidelity_budget"]) + "\n",
             _stopped(steps),
             "Calibrated values (one set for all cells; Sobol design then Nelder-Mead inside the "
-            "plausible ranges, one trial per cell):\n",
+            "plausible ranges; the cost weighs each fitted cell's mean change in units of 10 pp "
+            "and its trial scatter in factors of 2 against the paper's, over the same trials "
+            "for every parameter set; `make calibrate-table6` records the trials per group):\n",
             markdown_table(tables["calibrated_values"]) + "\n",
             f"Uncertainty: {budget['uncertainty']['samples']} machines drawn over the estimated "
             "parameters' ranges (Latin hypercube, `loader-model robustness "
@@ -210,6 +217,10 @@ def budget_section(budget: dict[str, Any] | None) -> tuple[str, dict[str, Rows]]
             markdown_table(tables["uncertainty"]) + "\n",
         ]
     )
+    scatter_text, scatter_tables = agreement_text(budget)
+    tables.update(scatter_tables)
+    if scatter_text:
+        text += "\n" + scatter_text
     return text, tables
 
 
