@@ -38,9 +38,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="trials per group and machine of the mean-and-scatter study (default: 6)",
     )  # fmt: skip
     parser.add_argument(
-        "--update", action="store_true",
-        help="recompute only the calibrated steps and the mean-and-scatter study of an existing "
-        "--output file (its --trials and --seed), keeping the other steps and the sign study",
+        "--update", nargs="?", const="calibrated,machines", default=None, metavar="PARTS",
+        help="recompute only PARTS of an existing --output file (its --trials and --seed): "
+        "calibrated (the calibrated steps), machines (the mean-and-scatter study) or both, "
+        "comma-separated (default: both); the other steps and the sign study are kept",
     )  # fmt: skip
     parser.add_argument("--output", metavar="FILE.json", required=True, help="the budget (JSON)")
     add_progress_argument(parser)
@@ -72,12 +73,13 @@ def run(args: argparse.Namespace) -> int:
         if getattr(args, name) < 2:
             flag = "--" + name.replace("_", "-")
             raise ValueError(f"{flag} {getattr(args, name)}: allowed: an integer >= 2")
-    previous = _previous(args) if args.update else None
+    parts = _parts(args.update)
+    previous = _previous(args) if args.update is not None else None
     start = time.perf_counter()
     calibrated = {speed: shipped_calibration(speed) for speed in (9.0, 18.0)}
     steps = budget_steps(calibrated)
     if previous is not None:
-        steps = [step for step in steps if step.held_out_kmh is not None]
+        steps = [s for s in steps if s.held_out_kmh is not None and "calibrated" in parts]
     summaries = run_budget(
         steps, trials=args.trials, seed=args.seed, jobs=args.jobs, progress=not args.no_progress
     )
@@ -94,14 +96,16 @@ def run(args: argparse.Namespace) -> int:
             f"both {summary['both_within']}; significant findings in sign "
             f"{summary['significant_in_sign']}/{summary['significant_count']}"
         )
-    machines = run_machines(
-        args.machines, args.machine_trials, args.seed, args.jobs, not args.no_progress
-    )
-    both = [cell["both_share"] for cell in machines["cells"].values()]
-    print(
-        f"  mean and scatter of {args.machines} plausible machines ({args.machine_trials} trials "
-        f"per group): share agreeing per cell {min(both):.0%}-{max(both):.0%}"
-    )
+    machines = previous.get("machines") if previous is not None else None
+    if "machines" in parts:
+        machines = run_machines(
+            args.machines, args.machine_trials, args.seed, args.jobs, not args.no_progress
+        )
+        both = [cell["both_share"] for cell in machines["cells"].values()]
+        print(
+            f"  mean and scatter of {args.machines} plausible machines ({args.machine_trials} "
+            f"trials per group): share agreeing per cell {min(both):.0%}-{max(both):.0%}"
+        )
     date = datetime.date.today().isoformat()
     if previous is not None:
         fresh = {summary["label"]: summary for summary in summaries}
@@ -110,14 +114,15 @@ def run(args: argparse.Namespace) -> int:
             "command": _command(args),
             "date": date,
             "wall_time_s": round(time.perf_counter() - start, 1),
-            "recomputed": [*fresh, "machines"],
+            "recomputed": [*fresh, *(["machines"] if "machines" in parts else [])],
         }
         results = {
             "steps": summaries,
             "uncertainty": previous["uncertainty"],
-            "machines": machines,
             "updates": [*previous.get("updates", []), update],
         }
+        if machines is not None:
+            results["machines"] = machines
         write_budget(
             args.output, results, previous["command"], previous["date"], previous["wall_time_s"]
         )
@@ -129,6 +134,18 @@ def run(args: argparse.Namespace) -> int:
         write_budget(args.output, results, _command(args), date, time.perf_counter() - start)
     print(f"wrote {args.output} in {time.perf_counter() - start:.0f} s")
     return 0
+
+
+def _parts(update: str | None) -> set[str]:
+    """What ``--update`` recomputes (everything without it)."""
+    if update is None:
+        return {"calibrated", "machines"}
+    parts = {part.strip() for part in update.split(",")}
+    if not parts or not parts <= {"calibrated", "machines"}:
+        raise ValueError(
+            f"--update {update!r}: allowed: calibrated, machines or both, comma-separated"
+        )
+    return parts
 
 
 def _previous(args: argparse.Namespace) -> dict:
@@ -155,5 +172,5 @@ def _command(args: argparse.Namespace) -> str:
         f"loader-model fidelity --trials {args.trials} --seed {args.seed} --jobs {args.jobs}"
         f"{'' if args.samples is None else f' --samples {args.samples}'}"
         f" --machines {args.machines} --machine-trials {args.machine_trials}"
-        f"{' --update' if args.update else ''}"
+        f"{'' if args.update is None else f' --update {args.update}'}"
     )

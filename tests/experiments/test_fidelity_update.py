@@ -50,8 +50,26 @@ def test_update_recomputes_the_calibrated_steps_only(previous, capsys) -> None:
     assert updated["machines"]["machines"] == 3 and updated["machines"]["trials"] == 2
     assert updated["command"] == budget["command"] and updated["date"] == budget["date"]
     (update,) = updated["updates"]
-    assert update["command"].endswith("--machines 3 --machine-trials 2 --update")
+    assert update["command"].endswith(
+        "--machines 3 --machine-trials 2 --update calibrated,machines"
+    )
     assert update["recomputed"] == [*ran, "machines"]
+
+
+def test_update_of_the_machines_alone_keeps_every_step(previous, capsys) -> None:
+    path, budget, ran = previous
+    argv = ["fidelity", "--trials", "80", "--machines", "3", "--update", "machines"]
+    assert main([*argv, "--output", str(path), "--no-progress"]) == 0
+    updated = json.loads(path.read_text(encoding="utf-8"))
+    assert not ran and updated["steps"] == budget["steps"]
+    assert updated["machines"]["machines"] == 3
+    assert updated["updates"][-1]["recomputed"] == ["machines"]
+    argv = ["fidelity", "--trials", "80", "--update", "calibrated", "--output", str(path)]
+    assert main([*argv, "--no-progress"]) == 0
+    again = json.loads(path.read_text(encoding="utf-8"))
+    assert again["machines"] == updated["machines"] and len(again["updates"]) == 2
+    assert main(["fidelity", "--update", "steps", "--output", str(path)]) == 2
+    assert "--update 'steps': allowed: calibrated, machines" in capsys.readouterr().err
 
 
 def test_update_needs_the_files_own_trials(previous, capsys) -> None:
