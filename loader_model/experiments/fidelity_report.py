@@ -165,6 +165,15 @@ def _uncertainty_rows(uncertainty: dict[str, Any]) -> Rows:
     return rows
 
 
+def _updates(budget: dict[str, Any]) -> str:
+    """Where parts of the budget were recomputed since (``loader-model fidelity --update``)."""
+    return "".join(
+        f"; {', '.join(u['recomputed'])} recomputed by `{u['command']}` on {u['date']} in "
+        f"{u['wall_time_s']:.0f} s"
+        for u in budget.get("updates", [])
+    )
+
+
 def budget_section(budget: dict[str, Any] | None) -> tuple[str, dict[str, Rows]]:
     """Markdown of the budget and its tables (for the CSV files); a note if none was shipped.
 
@@ -189,7 +198,8 @@ def budget_section(budget: dict[str, Any] | None) -> tuple[str, dict[str, Rows]]
             "## Fidelity budget: one modelling step at a time\n",
             f"Shipped result `loader_model/data/{BUDGET_FILE}`, made by `{budget['command']}` "
             f"on {budget['date']} in {budget['wall_time_s']:.0f} s (`make fidelity`; a slow test "
-            f"checks that it is current). Each step runs the whole Table 6 matrix, "
+            f"checks that it is current){_updates(budget)}. Each step runs the whole Table 6 "
+            "matrix, "
             f"{trial_count(budget)} trials per group with the report's seed, so that every "
             f"cell's mean change has a standard error of at most "
             f"{largest_standard_error(steps):.1f} pp (its 95 % interval's half-width over 1.96); "
