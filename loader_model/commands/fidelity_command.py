@@ -40,8 +40,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--update", nargs="?", const="calibrated,machines", default=None, metavar="PARTS",
         help="recompute only PARTS of an existing --output file (its --trials and --seed): "
-        "calibrated (the calibrated steps), machines (the mean-and-scatter study) or both, "
-        "comma-separated (default: both); the other steps and the sign study are kept",
+        "calibrated (the calibrated steps; calibrated-9 or calibrated-18 for one of them), "
+        "machines (the mean-and-scatter study), comma-separated (default: "
+        "calibrated,machines); the other steps and the sign study are kept",
     )  # fmt: skip
     parser.add_argument("--output", metavar="FILE.json", required=True, help="the budget (JSON)")
     add_progress_argument(parser)
@@ -79,7 +80,7 @@ def run(args: argparse.Namespace) -> int:
     calibrated = {speed: shipped_calibration(speed) for speed in (9.0, 18.0)}
     steps = budget_steps(calibrated)
     if previous is not None:
-        steps = [s for s in steps if s.held_out_kmh is not None and "calibrated" in parts]
+        steps = [s for s in steps if s.held_out_kmh is not None and _chosen(s.label, parts)]
     summaries = run_budget(
         steps, trials=args.trials, seed=args.seed, jobs=args.jobs, progress=not args.no_progress
     )
@@ -136,16 +137,24 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+#: What ``--update`` can recompute.
+_PARTS = ("calibrated", "calibrated-9", "calibrated-18", "machines")
+
+
 def _parts(update: str | None) -> set[str]:
     """What ``--update`` recomputes (everything without it)."""
     if update is None:
         return {"calibrated", "machines"}
     parts = {part.strip() for part in update.split(",")}
-    if not parts or not parts <= {"calibrated", "machines"}:
-        raise ValueError(
-            f"--update {update!r}: allowed: calibrated, machines or both, comma-separated"
-        )
+    if not parts <= set(_PARTS):
+        raise ValueError(f"--update {update!r}: allowed: {', '.join(_PARTS)}, comma-separated")
     return parts
+
+
+def _chosen(label: str, parts: set[str]) -> bool:
+    """Whether the calibrated step ``label`` ("+ calibrated to 9 km/h") is among ``parts``."""
+    speed = label.removeprefix("+ calibrated to ").removesuffix(" km/h")
+    return "calibrated" in parts or f"calibrated-{speed}" in parts
 
 
 def _previous(args: argparse.Namespace) -> dict:

@@ -64,12 +64,13 @@ def test_update_of_the_machines_alone_keeps_every_step(previous, capsys) -> None
     assert not ran and updated["steps"] == budget["steps"]
     assert updated["machines"]["machines"] == 3
     assert updated["updates"][-1]["recomputed"] == ["machines"]
-    argv = ["fidelity", "--trials", "80", "--update", "calibrated", "--output", str(path)]
+    argv = ["fidelity", "--trials", "80", "--update", "calibrated-18", "--output", str(path)]
     assert main([*argv, "--no-progress"]) == 0
     again = json.loads(path.read_text(encoding="utf-8"))
     assert again["machines"] == updated["machines"] and len(again["updates"]) == 2
+    assert ran == ["+ calibrated to 18 km/h"]
     assert main(["fidelity", "--update", "steps", "--output", str(path)]) == 2
-    assert "--update 'steps': allowed: calibrated, machines" in capsys.readouterr().err
+    assert "--update 'steps': allowed: calibrated, calibrated-9" in capsys.readouterr().err
 
 
 def test_update_needs_the_files_own_trials(previous, capsys) -> None:
