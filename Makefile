@@ -73,7 +73,8 @@ fidelity: setup
 	$(VENV)/bin/loader-model fidelity --trials 80 --machines 16 --machine-trials 6 --output loader_model/data/fidelity_budget.json
 
 ## fidelity-update: after make calibrate-table6, recompute only the budget's calibrated steps and the
-## plausible machines' mean-and-scatter study in the shipped budget (about 15 minutes)
+## plausible machines' mean-and-scatter study in the shipped budget (23 minutes for the machines, 6-8
+## for each calibrated step, measured on the shared 2-core Xeon at load 6-10)
 fidelity-update: setup
 	$(VENV)/bin/loader-model fidelity --trials 80 --machines 16 --machine-trials 6 --update --output loader_model/data/fidelity_budget.json
 
