@@ -5,26 +5,35 @@ precharge, gas volume and orifice, the tyres' vertical damping, the seat cushion
 mass) are listed with their plausible ranges and sources in ``data/table6_estimates.toml``, a
 robustness study (:mod:`loader_model.robustness`) whose samples are the uncertainty study of the
 report. The calibration looks for ONE parameter set for all cells (nothing per condition) inside
-those ranges that brings the model's change of a_total against the baseline (Table 6, section
-5.3) closest to the paper's at the fitted speed:
+those ranges that brings the model's means AND its trial scatter (Table 6, section 5.3) closest
+to the paper's at the fitted speed:
 
 .. math::
 
-    J(\\theta) = \\sum_{\\text{cells at the fitted speed}}
-        \\left(\\frac{\\Delta_{model}(\\theta) - \\Delta_{paper}}{10\\ \\text{pp}}\\right)^2
+    J(\\theta) = \\sum_{c} \\left(\\frac{\\Delta_c(\\theta) - \\Delta_c^{paper}}{10\\ \\text{pp}}
+        \\right)^2 + w \\sum_{c} \\left(\\frac{\\log(s_c(\\theta) / s_c^{paper})}{\\log 2}
+        \\right)^2
 
-over the six cells (two loads × passive, virtual accumulator, skyhook). Each evaluation runs the
-fitted speed's trials (:func:`~loader_model.experiments.trials.trial_specs`, the report's seeds:
-common random numbers, so J is a deterministic function of θ) on the model as built
-(:data:`~loader_model.experiments.variant.AS_BUILT`) with θ applied. The search runs in the unit
-cube (log scale for the log-uniform ranges): a scrambled Sobol design of the whole box first (the
-cost is not smooth: tyre lift-offs come and go), then Nelder-Mead with bounds from the best
-point. A θ the parameter files refuse, or a trial stopped by the validity checks, costs
-:data:`REFUSED_COST`.
+over the six cells c of the fitted speed (two loads × passive, virtual accumulator, skyhook):
+Δ_c the change of the mean a_total against the baseline over N trials per group, s_c the
+pooled trial standard deviation in percent of the baseline mean, s_c^paper the scatter the
+paper's Δ and p imply (:mod:`~loader_model.experiments.calibration_cost`, which states the
+assumptions and the treatment of p = 0.0000 and of stopped trials). Each evaluation runs the
+fitted speed's N trials per group (:func:`~loader_model.experiments.trials.trial_specs`, the
+report's seeds) on the model as built (:data:`~loader_model.experiments.variant.AS_BUILT`) with
+θ applied. The trials are common random numbers, the same speeds, boards and sensor noise for
+every θ, so J is a deterministic function of θ; averaging over N trials smooths the jumps that
+a tyre lift-off coming or going makes in a single trial. The search runs in the unit cube (log
+scale for the log-uniform ranges): a scrambled Sobol design of the whole box first, then
+Nelder-Mead with bounds from the best point. A θ the parameter files refuse, or one whose trials
+the validity checks stop too often, costs :data:`REFUSED_COST`.
 
-The held-out cells are never read: the targets are taken by :func:`paper_targets` for the fitted
-speed only, and the trials run at that speed only (a test replaces the held-out cells of the
-paper's table by garbage and gets the same result).
+The held-out cells are never read: the targets are taken for the fitted speed only
+(:func:`paper_targets`, :func:`scatter_targets`), and the trials run at that speed only (a test
+replaces the held-out cells of the paper's table by garbage and gets the same result). After
+the fit, :func:`check_calibration` runs both speeds with more trials (the fidelity budget's
+step, :func:`~loader_model.experiments.fidelity.run_budget`) and counts the cells whose mean
+and scatter agree with the paper's (:mod:`~loader_model.experiments.agreement`).
 """
 
 from __future__ import annotations
@@ -37,6 +46,20 @@ from typing import Any
 
 import numpy as np
 
+from loader_model.experiments.calibration_cost import (
+    SCATTER_WEIGHT,
+    cell_statistics,
+    mean_changes,
+    paper_targets,
+    scatter_targets,
+    table6_cost,
+)
+from loader_model.experiments.calibration_files import (
+    calibrated_loader,
+    calibrated_values,
+    shipped_calibration,
+    write_summary,
+)
 from loader_model.experiments.variant import AS_BUILT, ModelVariant
 
 __all__ = [
@@ -47,9 +70,12 @@ __all__ = [
     "calibrate_table6",
     "calibrated_loader",
     "calibrated_values",
+    "cell_statistics",
+    "check_calibration",
     "estimated_parameters",
     "mean_changes",
     "paper_targets",
+    "scatter_targets",
     "shipped_calibration",
     "shipped_value",
     "table6_cost",
@@ -65,8 +91,6 @@ CALIBRATED_FILES = {
 }
 #: Cost of a parameter set the files refuse or a drive the validity checks stop.
 REFUSED_COST = 1e6
-#: Percentage points that count as one unit of misfit.
-MISFIT_SCALE_PP = 10.0
 
 
 def estimated_parameters() -> list[tuple[str, Any]]:
@@ -76,46 +100,6 @@ def estimated_parameters() -> list[tuple[str, Any]]:
 
     text = resources.files("loader_model").joinpath("data", ESTIMATES_FILE).read_text("utf-8")
     return list(parse_study(text, ESTIMATES_FILE).parameters)
-
-
-def paper_targets(speed_kmh: float) -> dict[tuple[str, str], float]:
-    """The paper's change of a_total [%] per (load, controller) at ``speed_kmh`` only."""
-    from loader_model.experiments.table6 import LOAD_LABELS, PAPER_TABLE_6, SPEED_LABELS
-
-    if speed_kmh not in SPEED_LABELS:
-        raise ValueError(f"speed_kmh {speed_kmh!r}: allowed: {list(SPEED_LABELS)}")
-    targets = {}
-    for load, label in LOAD_LABELS.items():
-        for controller, (change, _) in PAPER_TABLE_6[(SPEED_LABELS[speed_kmh], label)].items():
-            targets[(load, controller)] = float(change)
-    return targets
-
-
-def mean_changes(outcomes: list[Any]) -> dict[tuple[str, str], float]:
-    """Change of the mean a_total against the baseline's mean [%] per (load, controller), from
-    trial outcomes of one speed (Table 6's "change"; no interval, so one trial per cell will do)."""
-    totals: dict[tuple[str, str], list[float]] = {}
-    for outcome in outcomes:
-        key = (outcome.spec.load, outcome.spec.controller)
-        totals.setdefault(key, []).append(outcome.a_total_m_s2)
-    changes = {}
-    for (load, controller), values in totals.items():
-        if controller != "baseline":
-            base = float(np.mean(totals[(load, "baseline")]))
-            changes[(load, controller)] = 100.0 * (float(np.mean(values)) / base - 1.0)
-    return changes
-
-
-def table6_cost(
-    changes: dict[tuple[str, str], float], targets: dict[tuple[str, str], float]
-) -> float:
-    """J of the module notes: the misfit of the model's ``changes`` against ``targets``."""
-    missing = sorted(set(targets) - set(changes))
-    if missing:
-        raise ValueError(f"no model cells for {missing}")
-    return float(
-        sum(((changes[key] - value) / MISFIT_SCALE_PP) ** 2 for key, value in targets.items())
-    )
 
 
 @dataclass(frozen=True)
@@ -136,6 +120,10 @@ class CalibrationResult:
         J at the calibrated and the shipped values.
     evaluations : int
         Cost evaluations (each one run of the fitted speed's trials).
+    trials : int
+        Trials per group of each evaluation (N).
+    scatter_weight : float
+        Weight w of the scatter terms.
     """
 
     fit_speed_kmh: float
@@ -146,6 +134,8 @@ class CalibrationResult:
     cost: float
     start_cost: float
     evaluations: int
+    trials: int = 0
+    scatter_weight: float = SCATTER_WEIGHT
 
 
 def _grid(u: np.ndarray) -> tuple[float, ...]:
@@ -188,7 +178,8 @@ def calibrate_table6(
     *,
     evaluations: int = 128,
     design_points: int = 32,
-    trials: int = 2,
+    trials: int = 8,
+    scatter_weight: float = SCATTER_WEIGHT,
     seed: int = 0,
     jobs: int = 2,
     duration_s: float | None = None,
@@ -206,8 +197,12 @@ def calibrate_table6(
         Budget of cost evaluations in all (design points included), >= design_points + 2.
     design_points : int
         Points of the Sobol design before Nelder-Mead (a power of 2).
-    trials, seed : int
-        Trials per cell and the seed of their draws (as ``loader-model reproduce``).
+    trials : int
+        Trials per group of each evaluation (N >= 2; the same trials for every θ).
+    scatter_weight : float
+        Weight w >= 0 of the scatter terms of J (0: the means alone).
+    seed : int
+        Seed of the trials' draws (as ``loader-model reproduce``).
     jobs : int
         Processes for the trials.
     duration_s : float, optional
@@ -228,8 +223,13 @@ def calibrate_table6(
     from tqdm import tqdm
 
     targets = paper_targets(fit_speed_kmh)
+    paper_scatters = scatter_targets(fit_speed_kmh)
     if isinstance(evaluations, bool) or not isinstance(evaluations, int):
         raise ValueError(f"evaluations must be an integer; got {evaluations!r}")
+    if isinstance(trials, bool) or not isinstance(trials, int) or trials < 2:
+        raise ValueError(f"trials {trials!r}: allowed: an integer >= 2 (a scatter needs two)")
+    if not math.isfinite(scatter_weight) or scatter_weight < 0.0:
+        raise ValueError(f"scatter_weight {scatter_weight!r}: allowed: a finite number >= 0")
     if design_points < 1 or design_points & (design_points - 1):
         raise ValueError(f"design_points {design_points}: allowed: a power of 2 (Sobol balance)")
     if evaluations < design_points + 2:
@@ -259,7 +259,9 @@ def calibrate_table6(
         specs = trial_specs(
             seed, trials, speeds_kmh=(fit_speed_kmh,), duration_s=duration_s, variant=variant_u
         )
-        return table6_cost(mean_changes(run_trials(specs, jobs=jobs, progress=False)), targets)
+        outcomes = run_trials(specs, jobs=jobs, progress=False, keep_failures=True)
+        changes, scatters = cell_statistics(outcomes)
+        return table6_cost(changes, targets, scatters, paper_scatters, scatter_weight)
 
     def cost(u: np.ndarray) -> float:
         key = _grid(u)
@@ -308,63 +310,34 @@ def calibrate_table6(
         cost=final,
         start_cost=start_cost,
         evaluations=len(memo),
+        trials=trials,
+        scatter_weight=float(scatter_weight),
     )
 
 
-def calibrated_loader(result: CalibrationResult, date: str) -> Any:
-    """The shipped loader with the calibrated values, each with a source that says to which cells
-    and on what date it was calibrated, and what it was."""
-    from loader_model import parameters
+def check_calibration(
+    values: dict[str, float],
+    fit_speed_kmh: float,
+    *,
+    trials: int = 80,
+    seed: int = 0,
+    jobs: int = 2,
+    progress: bool = False,
+) -> dict[str, Any]:
+    """Both speeds' cells on the calibrated ``values``, with ``trials`` trials per group.
 
-    loader = parameters.default_loader()
-    held_out = 18.0 if result.fit_speed_kmh == 9.0 else 9.0
-    for path, value in result.values.items():
-        low, high = result.bounds[path]
-        bound = " (at a bound)" if path in result.at_bounds else ""
-        source = (
-            f"calibrated to Table 6's six {result.fit_speed_kmh:g} km/h cells on {date} "
-            f"(make calibrate-table6; the {held_out:g} km/h cells held out){bound}; shipped "
-            f"estimate {result.start[path]:.6g}, plausible range [{low:.6g}, {high:.6g}] "
-            f"({ESTIMATES_FILE})"
-        )
-        loader = parameters.replace(loader, {path: value}, source=source)
-    return loader
+    The fidelity budget's step "calibrated to ``fit_speed_kmh``" (:func:`~loader_model.
+    experiments.fidelity.run_budget`, the same trials and seed): per cell the mean change and its
+    standard error, the trial scatter beside the paper's implied one, and the counts of cells
+    within 10 pp, with the scatter within a factor 2, and both, over all twelve cells and the six
+    held-out ones (:func:`~loader_model.experiments.fidelity.scatter_summary`).
+    """
+    from loader_model.experiments.fidelity import BudgetStep, run_budget
 
-
-def calibrated_values(path: Any) -> dict[str, float]:
-    """The estimated parameters' values in a calibrated loader file (:func:`calibrated_loader`)."""
-    from functools import reduce
-
-    from loader_model import parameters
-    from loader_model.parameters.toml_format import to_raw
-
-    raw = to_raw(parameters.load_loader(path))
-    return {
-        p: float(reduce(lambda node, key: node[key], p.split("."), raw)["value"])
-        for p, _ in estimated_parameters()
-    }
-
-
-def shipped_calibration(fit_speed_kmh: float) -> dict[str, float]:
-    """The values of the shipped calibrated loader file of ``fit_speed_kmh`` (package data)."""
-    name = CALIBRATED_FILES[float(fit_speed_kmh)]
-    with resources.as_file(resources.files("loader_model").joinpath("data", name)) as path:
-        return calibrated_values(path)
-
-
-def write_summary(path: Any, result: CalibrationResult, date: str, command: str) -> None:
-    """The fit's summary as JSON (atomically), for the report and the currency test."""
-    import dataclasses
-    import json
-
-    from loader_model.io.export import write_atomically
-
-    content = dataclasses.asdict(result) | {"date": date, "command": command}
-    content["bounds"] = {k: list(v) for k, v in result.bounds.items()}
-    text = json.dumps(content, indent=1, sort_keys=True)
-    write_atomically(
-        path,
-        lambda temporary: temporary.write_text(text + "\n", encoding="utf-8"),
-        (".json",),
-        "calibration summary",
-    )
+    if isinstance(trials, bool) or not isinstance(trials, int) or trials < 2:
+        raise ValueError(f"trials {trials!r}: allowed: an integer >= 2")
+    held_out = 18.0 if float(fit_speed_kmh) == 9.0 else 9.0
+    label = f"+ calibrated to {fit_speed_kmh:g} km/h"
+    step = BudgetStep(label, AS_BUILT.with_values(values, label), held_out)
+    summary = run_budget([step], trials=trials, seed=seed, jobs=jobs, progress=progress)[0]
+    return summary | {"trials": trials, "seed": seed}

@@ -15,8 +15,11 @@ seeds) on a :class:`~loader_model.experiments.variant.ModelVariant` each, cumula
 
 Per step: the cells within 10 pp of the paper, the 9 km/h empty row with its 95 % intervals, and
 the paper's significant findings (p < 0.05, nine cells) reproduced in sign, and in sign with
-the model's own p < 0.05. The result is written as JSON (:func:`write_budget`) beside the command
-that made it, since the whole budget takes minutes; the report renders the shipped file.
+the model's own p < 0.05; per cell the model's trial scatter beside the one the paper's Δ and p
+imply, and the cells whose scatter, and whose mean and scatter both, agree with the paper's
+(:mod:`~loader_model.experiments.agreement`: mean within 10 pp, scatter within a factor 2).
+The result is written as JSON (:func:`write_budget`) beside the command that made it, since the
+whole budget takes minutes; the report renders the shipped file.
 """
 
 from __future__ import annotations
@@ -27,6 +30,7 @@ from typing import Any
 
 import numpy as np
 
+from loader_model.experiments.agreement import WITHIN_PP
 from loader_model.experiments.variant import AS_BUILT, AS_IT_WAS, ModelVariant
 
 __all__ = [
@@ -35,6 +39,7 @@ __all__ = [
     "budget_steps",
     "read_budget",
     "run_budget",
+    "scatter_summary",
     "step_summary",
     "uncertainty_shares",
     "write_budget",
@@ -42,8 +47,6 @@ __all__ = [
 
 #: p-value below which a paper cell counts as a significant finding.
 SIGNIFICANCE = 0.05
-#: Percentage points within which a cell counts as reproduced.
-WITHIN_PP = 10.0
 
 
 @dataclass(frozen=True)
@@ -136,8 +139,59 @@ def run_budget(
                 key = f"{o.spec.speed_kmh:g}/{o.spec.load}"
                 baseline.setdefault(key, []).append(o.a_total_m_s2)
         summary["baseline_a_total"] = {k: float(np.mean(v)) for k, v in baseline.items()}
-        summaries.append(summary)
+        summaries.append(summary | scatter_summary(outcomes, step.held_out_kmh, summary["cells"]))
     return summaries
+
+
+def scatter_summary(
+    outcomes: list[Any], held_out_kmh: float | None, cells: dict[str, dict[str, float]]
+) -> dict[str, Any]:
+    """Each cell's scatter beside the paper's implied one, and the agreement counts.
+
+    Adds to each entry of ``cells`` (keyed ``"speed/load/controller"``, as :func:`step_summary`
+    makes them) the model's pooled trial SD ``sd`` [% of the baseline mean] and the standard
+    error of its mean change ``se`` [pp] (:func:`~loader_model.experiments.scatter.
+    model_scatter`), the paper's implied SD ``paper_sd`` and whether it is an upper bound
+    ``paper_sd_bound``, and ``scatter_agrees`` / ``agrees`` (scatter / mean and scatter,
+    :mod:`~loader_model.experiments.agreement`). Returns the counts over all cells and over
+    the held-out speed's: ``scatter_within``, ``both_within``, ``held_out_scatter_within``,
+    ``held_out_both_within``, and ``largest_se`` [pp].
+    """
+    from loader_model.experiments.agreement import mean_agrees, paper_scatter, scatter_agrees
+    from loader_model.experiments.scatter import model_scatter
+
+    groups: dict[tuple[float, str, str], list[float]] = {}
+    for o in outcomes:
+        key = (o.spec.speed_kmh, o.spec.load, o.spec.controller)
+        groups.setdefault(key, []).append(o.a_total_m_s2)
+    counts = dict.fromkeys(
+        ("scatter_within", "both_within", "held_out_scatter_within", "held_out_both_within"), 0
+    )
+    largest = 0.0
+    for key, cell in cells.items():
+        speed, load, controller = key.split("/")
+        base = groups[(float(speed), load, "baseline")]
+        model = model_scatter(base, groups[(float(speed), load, controller)])
+        paper = paper_scatter(float(speed), load, controller)
+        scatter_ok = scatter_agrees(model.sd_percent, paper.sd_percent, paper.upper_bound)
+        both = scatter_ok and mean_agrees(cell["change"], cell["paper"])
+        cell.update(
+            sd=model.sd_percent,
+            se=model.standard_error_pp,
+            paper_sd=float(paper.sd_percent),
+            paper_sd_bound=paper.upper_bound,
+            scatter_agrees=scatter_ok,
+            agrees=both,
+        )
+        largest = max(largest, model.standard_error_pp)
+        held = held_out_kmh is not None and float(speed) == held_out_kmh
+        for name, ok in (("scatter_within", scatter_ok), ("both_within", both)):
+            counts[name] += int(ok)
+            counts[f"held_out_{name}"] += int(ok and held)
+    result: dict[str, Any] = counts | {"largest_se": largest}
+    if held_out_kmh is None:
+        result |= {"held_out_scatter_within": None, "held_out_both_within": None}
+    return result
 
 
 def write_budget(

@@ -165,8 +165,22 @@ def _uncertainty_rows(uncertainty: dict[str, Any]) -> Rows:
     return rows
 
 
+def _updates(budget: dict[str, Any]) -> str:
+    """Where parts of the budget were recomputed since (``loader-model fidelity --update``)."""
+    return "".join(
+        f"; {', '.join(u['recomputed'])} recomputed by `{u['command']}` on {u['date']} in "
+        f"{u['wall_time_s']:.0f} s"
+        for u in budget.get("updates", [])
+    )
+
+
 def budget_section(budget: dict[str, Any] | None) -> tuple[str, dict[str, Rows]]:
-    """Markdown of the budget and its tables (for the CSV files); a note if none was shipped."""
+    """Markdown of the budget and its tables (for the CSV files); a note if none was shipped.
+
+    With the calibrated steps' scatter and the plausible machines' mean-and-scatter study
+    (:mod:`~loader_model.experiments.agreement_report`) where the budget has them."""
+    from loader_model.experiments.agreement_report import agreement_text
+
     if budget is None:
         return (
             "## Fidelity budget\n\nNo budget shipped: run `make fidelity` (after "
@@ -184,7 +198,8 @@ def budget_section(budget: dict[str, Any] | None) -> tuple[str, dict[str, Rows]]
             "## Fidelity budget: one modelling step at a time\n",
             f"Shipped result `loader_model/data/{BUDGET_FILE}`, made by `{budget['command']}` "
             f"on {budget['date']} in {budget['wall_time_s']:.0f} s (`make fidelity`; a slow test "
-            f"checks that it is current). Each step runs the whole Table 6 matrix, "
+            f"checks that it is current){_updates(budget)}. Each step runs the whole Table 6 "
+            "matrix, "
             f"{trial_count(budget)} trials per group with the report's seed, so that every "
             f"cell's mean change has a standard error of at most "
             f"{largest_standard_error(steps):.1f} pp (its 95 % interval's half-width over 1.96); "
@@ -200,7 +215,9 @@ def budget_section(budget: dict[str, Any] | None) -> tuple[str, dict[str, Rows]]
             markdown_table(tables["fidelity_budget"]) + "\n",
             _stopped(steps),
             "Calibrated values (one set for all cells; Sobol design then Nelder-Mead inside the "
-            "plausible ranges, one trial per cell):\n",
+            "plausible ranges; the cost weighs each fitted cell's mean change in units of 10 pp "
+            "and its trial scatter in factors of 2 against the paper's, over the same trials "
+            "for every parameter set; `make calibrate-table6` records the trials per group):\n",
             markdown_table(tables["calibrated_values"]) + "\n",
             f"Uncertainty: {budget['uncertainty']['samples']} machines drawn over the estimated "
             "parameters' ranges (Latin hypercube, `loader-model robustness "
@@ -210,6 +227,10 @@ def budget_section(budget: dict[str, Any] | None) -> tuple[str, dict[str, Rows]]
             markdown_table(tables["uncertainty"]) + "\n",
         ]
     )
+    scatter_text, scatter_tables = agreement_text(budget)
+    tables.update(scatter_tables)
+    if scatter_text:
+        text += "\n" + scatter_text
     return text, tables
 
 

@@ -64,11 +64,18 @@ def _budget_lines(budget: dict[str, Any] | None) -> list[str]:
             f"{after['significant_in_sign']} of {after['significant_count']}."
         )
     for fit in (s for s in budget["steps"] if s.get("held_out_kmh") is not None):
+        scatter = (
+            f"; its trial scatter lies within a factor 2 of the paper's implied one in "
+            f"{fit['scatter_within']} of {fit['count']} cells ({fit['held_out_scatter_within']} "
+            f"of the held-out), mean and scatter both in {fit['both_within']}"
+            if "scatter_within" in fit
+            else ""
+        )
         lines.append(
             f"- **What the estimated parameters can reach**: “{fit['label'].lstrip('+ ')}” brings "
             f"{fit['within']} of {fit['count']} cells within {FIDELITY_POINTS:g} pp, the held-out "
             f"{fit['held_out_kmh']:g} km/h cells {fit['held_out_within']} of "
-            f"{fit['held_out_count']}."
+            f"{fit['held_out_count']}{scatter}."
         )
     uncertainty = budget.get("uncertainty")
     if uncertainty:

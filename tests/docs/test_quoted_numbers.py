@@ -210,6 +210,27 @@ def _reproduction_quotations() -> list[tuple[str, str]]:
     values = [budget_step(f"+ calibrated to {s} km/h")["values"] for s in (9, 18)]
     precharge = [v["accumulator.precharge_pressure"] / 1e5 for v in values]
     quotes.append((page, f"(precharge {precharge[0]:.0f} bar against {precharge[1]:.0f} bar)"))
+    for speed in (9, 18):
+        fit = budget_step(f"+ calibrated to {speed} km/h")
+        quotes.append(
+            (
+                page,
+                f"| {speed} km/h | {fit['within']} of 12 ({fit['held_out_within']} of 6) | "
+                f"{fit['scatter_within']} of 12 ({fit['held_out_scatter_within']} of 6) | "
+                f"{fit['both_within']} of 12 ({fit['held_out_both_within']} of 6) | "
+                f"{number(fit['largest_se'])} |",
+            )
+        )
+    machines = budget()["machines"]
+    both = [cell["both_share"] for cell in machines["cells"].values()]
+    quotes.append(
+        (
+            page,
+            f"{machines['machines']} plausible machines, {machines['trials']} trials per group "
+            f"each: mean and scatter both agree in {100 * min(both):.0f}-{100 * max(both):.0f} % "
+            "of them per cell",
+        )
+    )
     return quotes
 
 

@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 import math
+import re
 from types import SimpleNamespace
 
 import pytest
 
 from loader_model.experiments import calibration_table6 as calibration
 from loader_model.experiments import table6
+from loader_model.experiments.agreement import paper_scatter
 from loader_model.experiments.table6 import PAPER_TABLE_6
 
 
@@ -67,7 +69,7 @@ def test_the_fit_never_reads_the_held_out_cells(monkeypatch) -> None:
         return run_trial(spec)
 
     monkeypatch.setattr(table6, "run_trial", spy)
-    options = {"evaluations": 4, "design_points": 2, "trials": 1, "jobs": 1, "duration_s": 3.0}
+    options = {"evaluations": 4, "design_points": 2, "trials": 2, "jobs": 1, "duration_s": 3.0}
     honest = calibration.calibrate_table6(9.0, progress=False, **options)
     poisoned = {key: dict(cells) for key, cells in PAPER_TABLE_6.items()}
     for key in (("High", "Low"), ("High", "High")):
@@ -84,3 +86,54 @@ def test_bad_budgets_are_named() -> None:
         calibration.calibrate_table6(9.0, design_points=3, progress=False)
     with pytest.raises(ValueError, match="evaluations 5: allowed: at least"):
         calibration.calibrate_table6(9.0, evaluations=5, design_points=4, progress=False)
+
+
+def _speed_outcomes(groups: dict[tuple[str, str], list[float]]) -> list[SimpleNamespace]:
+    return [_outcome(load, c, a) for (load, c), values in groups.items() for a in values]
+
+
+def test_cell_statistics_give_the_change_and_the_pooled_scatter() -> None:
+    # baseline 4, 6, 4, 6 (mean 5, SD √(4/3)); skyhook 3, 5, 3, 5 (mean 4, the same SD): change
+    # -20 %, pooled SD √(4/3) / 5 of the baseline mean; one stopped trial (NaN) of 9 left out
+    groups = {("empty", "baseline"): [4.0, 6.0] * 2, ("empty", "skyhook"): [3.0, 5.0] * 2}
+    groups[("empty", "skyhook")].append(math.nan)
+    changes, scatters = calibration.cell_statistics(_speed_outcomes(groups))
+    assert changes == {("empty", "skyhook"): pytest.approx(-20.0, rel=1e-12)}
+    sd = 100 * math.sqrt(4 / 3) / 5
+    assert scatters == {("empty", "skyhook"): pytest.approx(sd, rel=1e-12)}
+    groups[("empty", "baseline")].append(math.nan)  # 2 of 10: more than one in eight
+    with pytest.raises(ValueError, match="2 of 10 trials stopped by the validity checks"):
+        calibration.cell_statistics(_speed_outcomes(groups))
+
+
+def test_the_cost_adds_the_scatter_in_factors_of_two() -> None:
+    targets = {("empty", "passive"): -26.4, ("empty", "skyhook"): -33.6}
+    paper = {key: paper_scatter(9.0, *key) for key in targets}
+    changes = {("empty", "passive"): -16.4, ("empty", "skyhook"): -33.6}
+    # passive: 10 pp off (1) and twice the paper's scatter (1); skyhook: on the mean, below
+    # its upper bound (0)
+    scatters = {("empty", "passive"): 2 * paper[("empty", "passive")].sd_percent}
+    scatters[("empty", "skyhook")] = 0.5 * paper[("empty", "skyhook")].sd_percent
+    cost = calibration.table6_cost(changes, targets, scatters, paper, weight=3.0)
+    assert cost == pytest.approx(1.0 + 3.0 * 1.0, rel=1e-12)
+    assert calibration.table6_cost(changes, targets) == pytest.approx(1.0, rel=1e-12)
+    assert calibration.table6_cost(changes, targets, scatters, paper, 0.0) == pytest.approx(1.0)
+    with pytest.raises(ValueError, match=re.escape("weight must be >= 0 and finite; got -1.0")):
+        calibration.table6_cost(changes, targets, scatters, paper, weight=-1.0)
+    with pytest.raises(ValueError, match="scatters need paper_scatters"):
+        calibration.table6_cost(changes, targets, scatters)
+
+
+def test_the_scatter_targets_are_the_fitted_speeds_cells_only() -> None:
+    eighteen = calibration.scatter_targets(18.0)
+    assert set(eighteen) == set(calibration.paper_targets(18.0))
+    assert eighteen[("full", "passive")] == paper_scatter(18.0, "full", "passive")
+
+
+def test_bad_trials_and_weights_are_named() -> None:
+    with pytest.raises(ValueError, match=re.escape("trials 1: allowed: an integer >= 2")):
+        calibration.calibrate_table6(9.0, trials=1, progress=False)
+    with pytest.raises(
+        ValueError, match=re.escape("scatter_weight -0.5: allowed: a finite number >= 0")
+    ):
+        calibration.calibrate_table6(9.0, scatter_weight=-0.5, progress=False)
