@@ -35,6 +35,7 @@ def nonlinear(plant, problem, constrained):
     return solve_nonlinear_bound(problem, plant.u0 + constrained.command)
 
 
+@pytest.mark.slow  # 6.2 s on a cold cache: central differences of the whole rollout
 def test_gauss_newton_gradient_matches_finite_differences(plant, road):
     """The model's gradient of a_total² (the flow's sensitivities along the simulated
     trajectory, :func:`~loader_model.simulation.stepper.ros2_period`) against central differences

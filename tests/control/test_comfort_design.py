@@ -152,6 +152,7 @@ def test_gradient_matches_finite_differences(plants) -> None:
             np.testing.assert_allclose(exact, fd, rtol=1e-6)
 
 
+@pytest.mark.slow  # 6.3 s on a cold cache: the adjoint against CasADi AD over the whole cost
 def test_adjoint_gradient_equals_casadi_ad() -> None:
     # CasADi's h2_cost_function solves the Lyapunov equation in Kronecker form (1444 x 1444 here);
     # on this plant it loses digits: at K = (40, −90, −50, 15) its cost is 1.7e-6 and its

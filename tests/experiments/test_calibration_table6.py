@@ -58,6 +58,7 @@ def test_the_search_box_maps_the_shipped_values_and_the_bounds() -> None:
         assert distribution.source.startswith("estimate")
 
 
+@pytest.mark.slow  # 9.7 s on a cold cache: two small fits of 128 three-second trials
 def test_the_fit_never_reads_the_held_out_cells(monkeypatch) -> None:
     """Garbage in the 18 km/h cells of the paper's table changes nothing, and no 18 km/h trial
     runs, when fitting the 9 km/h cells (a small budget on a short drive)."""
