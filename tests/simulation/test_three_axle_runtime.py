@@ -244,7 +244,7 @@ def test_lift_off_events_and_airborne_check_cover_every_axle(plant, board_run) -
     states = np.column_stack([result.columns[n] for n in layout.state_names])
     rear_off = outputs.copy()
     rear_off[1000:1200, layout.output_names.index("F_Ry")] = 0.0
-    bounds = validity_bounds(plant.params, machine=layout.machine.name)
+    bounds = validity_bounds(plant.params, layout=layout)
     assert ValidityMonitor(bounds, 1e-3, layout).check(0, states, rear_off) is None
     columns = dict(result.columns) | {"F_Ry": rear_off[:, layout.output_names.index("F_Ry")]}
     events = find_events(
