@@ -143,6 +143,7 @@ def test_an_error_after_a_caught_interrupt_is_the_interrupt(monkeypatch, capsys)
     assert capsys.readouterr().err == "loader-model modes: interrupted; no partial file was left\n"
 
 
+@pytest.mark.usefixtures("python_sigint")
 def test_an_interrupt_within_a_deferred_block_acts_at_its_end() -> None:
     before = signal.getsignal(signal.SIGINT)
     reached = []

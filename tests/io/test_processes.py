@@ -107,6 +107,7 @@ def test_completed_yields_every_future_once() -> None:
         assert sorted(f.result() for f in pool.completed(futures)) == [3**n for n in range(6)]
 
 
+@pytest.mark.usefixtures("python_sigint")
 def test_an_interrupt_during_submit_acts_after_it(monkeypatch) -> None:
     original = ProcessPoolExecutor.submit
 
