@@ -49,17 +49,16 @@ most v Δ / (4 f_s). Measured on the paper's course with R = 0.42 m (Δ = 0.47) 
 
 from __future__ import annotations
 
-import hashlib
-from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from loader_model.simulation._checks import as_number
-from loader_model.simulation.envelope import MAXIMUM_TYRE_RADIUS_M, effective_road
+from loader_model.simulation.effective_road import effective_heights, effective_table
+from loader_model.simulation.envelope import MAXIMUM_TYRE_RADIUS_M
 from loader_model.simulation.roads import RoadProfile
-from loader_model.simulation.tandem_cam import TandemCam, tandem_cam_axles
+from loader_model.simulation.tandem_cam import TandemCam
 
 __all__ = [
     "DEFAULT_SAMPLE_RATE_HZ",
@@ -76,12 +75,6 @@ DEFAULT_TYRE_RADIUS_M = 0.42
 DEFAULT_SAMPLE_RATE_HZ = 1000.0
 #: Order of the columns of :attr:`RoadInput.road_m` (the generated plant's ``road`` input).
 ROAD_NAMES = ("w_Ax", "w_Ay", "w_Bx", "w_By")
-#: Effective roads a process keeps (:func:`_effective_table`, least recently used out): the
-#: design check drives each condition with three controllers over one road, the design on the
-#: machine and the course refinement drive the same roads with every candidate's gains, and a
-#: tandem cam over an ISO 8608 road costs about 0.1 s.
-EFFECTIVE_ROADS_KEPT = 8
-_EFFECTIVE_ROADS: OrderedDict[tuple, tuple[np.ndarray, np.ndarray, np.ndarray]] = OrderedDict()
 
 
 @dataclass(frozen=True)
@@ -174,7 +167,9 @@ class RoadInput:
     def exact_road(self, time_s: object) -> np.ndarray:
         """w at ``time_s`` from the envelope itself, no table (slow; for checks); shape (..., 2n)."""
         distance = self.axle_distance(time_s)
-        height_m, slope, _ = _effective(self.profile, distance, self.tyre_radius_m, self.cams)
+        height_m, slope, _ = effective_heights(
+            self.profile, distance, self.tyre_radius_m, self.cams
+        )
         horizontal_m = -np.asarray(self.slope_to_x_m) * slope
         return _interleave(horizontal_m, height_m)
 
@@ -313,7 +308,7 @@ def road_input(
             f"({duration_s:g} s at {rate_hz:g} Hz)"
         )
     time_s = np.arange(count) / rate_hz
-    height_m, slope, height_rate = _effective_table(
+    height_m, slope, height_rate = effective_table(
         profile, time_s, start_m, speed_m_s, offsets, radii_m, cams, names
     )
     road_m = _interleave(-np.asarray(gains_m) * slope, height_m)
@@ -360,71 +355,3 @@ def tyre_radii(tyre_radius_m: object, names: Sequence[str]) -> tuple[float, ...]
         as_number(r, f"tyre_radius_m[{i}] (axle {name})", "m", **limits)
         for i, (r, name) in enumerate(zip(radii, names, strict=True))
     )
-
-
-def _effective_table(
-    profile: RoadProfile,
-    time_s: np.ndarray,
-    start_m: float,
-    speed_m_s: float,
-    offsets: tuple[float, ...],
-    radii_m: tuple[float, ...],
-    cams: tuple[TandemCam, ...] | None,
-    names: tuple[str, ...],
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """:func:`_effective` at the axles' distances s_i(t) = s_0 + v t − d_i, read-only, kept for
-    the next drive of the same profile, grid and tyres (:data:`EFFECTIVE_ROADS_KEPT`): the
-    same numbers, computed once.
-
-    Raises
-    ------
-    ValueError
-        Where a tyre meets a wall at its equator (a step at least one radius tall).
-    """
-    digest = hashlib.sha256(profile.distance_m.tobytes() + profile.height_m.tobytes()).digest()
-    key = (digest, time_s.size, float(time_s[1]), start_m, speed_m_s, offsets, radii_m, cams)
-    kept = _EFFECTIVE_ROADS.get(key)
-    if kept is not None:
-        _EFFECTIVE_ROADS.move_to_end(key)
-        return kept
-    distance_m = start_m + speed_m_s * time_s[:, None] - np.array(offsets)
-    height_m, slope, height_rate = _effective(profile, distance_m, radii_m, cams)
-    if not np.all(np.isfinite(slope)):
-        row, axle = np.argwhere(~np.isfinite(slope))[0]
-        wheel = f"rigid wheel of radius {radii_m[axle]:g} m" if cams is None else "tandem cam"
-        raise ValueError(
-            f"the {wheel} meets a wall at its equator at "
-            f"{distance_m[row, axle]:.6g} m (axle {names[axle]}): the profile has a step at "
-            "least one radius tall"
-        )
-    kept = (height_m, slope, height_rate)
-    for array in kept:
-        array.setflags(write=False)
-    _EFFECTIVE_ROADS[key] = kept
-    while len(_EFFECTIVE_ROADS) > EFFECTIVE_ROADS_KEPT:
-        _EFFECTIVE_ROADS.popitem(last=False)
-    return kept
-
-
-def _effective(
-    profile: RoadProfile,
-    distance_m: np.ndarray,
-    tyre_radius_m: float | tuple[float, ...],
-    cams: tuple[TandemCam, ...] | None,
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Effective height, slope tan β and dh_eff/ds at axle distances (..., n): in one pass when
-    every axle has the same tyre, else axle by axle."""
-    radii = tyre_radius_m if isinstance(tyre_radius_m, tuple) else (tyre_radius_m,)
-    if cams is None:
-        if len(set(radii)) == 1:
-            height_m, slope = effective_road(profile, distance_m, radii[0])
-            return height_m, slope, slope
-        roads = [effective_road(profile, distance_m[..., i], r) for i, r in enumerate(radii)]
-        height_m = np.stack([road.height_m for road in roads], axis=-1)
-        slope = np.stack([road.slope for road in roads], axis=-1)
-        return height_m, slope, slope
-    if len({(c.half_length_m, c.half_height_m, c.exponent) for c in cams}) == 1:
-        road = tandem_cam_axles(profile, distance_m, cams)
-        return road.height_m, road.slope, road.height_rate
-    each = [tandem_cam_axles(profile, distance_m[..., i : i + 1], (c,)) for i, c in enumerate(cams)]
-    return tuple(np.concatenate(field, axis=-1) for field in zip(*each, strict=True))  # type: ignore[return-value]
