@@ -91,6 +91,13 @@ class ControllerSettings(Sourced):
         Norms of the feedback signals (section 3.3): 2 g, 20 rad/s², 33°.
     command_limit : float
         Saturation of the command V_p,ref as a fraction of V_p,max (±).
+    ride_control_min_speed : float
+        Travel speed [m/s] below which the ride control is off: the machine drives as the
+        baseline, load-holding valves closed (0, the default: on at every speed, as in the
+        paper). Commercial ride control switches itself on above a speed, for example about
+        9.5 km/h (6 mph) in AUTO (US Army TM 5-3805-291-23-1, theory of operation of the
+        electro-hydraulic system); the courses here are driven at one speed, so the gate
+        holds for a whole run (:meth:`~loader_model.simulation.scenario.Scenario.at_speed`).
     """
 
     k_fb: tuple[float, float, float, float] = field(
@@ -139,6 +146,15 @@ class ControllerSettings(Sourced):
             "-",
             Range(0.0, 1.0, low_open=True, reason="a fraction of the pump's maximum displacement"),
         )
+    )
+    ride_control_min_speed: float = field(
+        default=0.0,
+        metadata=si(
+            "m/s",
+            Range(
+                0.0, 15.0, reason="0 (always on) to 54 km/h, above any loader's travel speed"
+            ),
+        ),
     )
     sources: tuple[tuple[str, str], ...] = sources_field()
 

@@ -7,9 +7,11 @@ Every value is an inline table with its SI unit and a one-line source or reason:
 
 Sections are TOML tables named after the dataclass fields (``[tyres.front]``). Reading checks
 unknown keys (suggesting the closest valid key), missing keys, the unit string (must equal the
-field's SI unit, no conversion), the value type and finiteness. Range and consistency checks are
-done afterwards by :func:`loader_model.parameters.sets.validate`. Floats are written with ``repr``,
-which :mod:`tomllib` reads back bit for bit, so load -> save -> load is exact.
+field's SI unit, no conversion), the value type and finiteness. A leaf whose field has a default
+(a setting added after files were written with it) may be left out and takes that default.
+Range and consistency checks are done afterwards by
+:func:`loader_model.parameters.sets.validate`. Floats are written with ``repr``, which
+:mod:`tomllib` reads back bit for bit, so load -> save -> load is exact.
 
 The writer is hand-written on purpose: tomli-w (the usual TOML writer) writes every mapping as a
 ``[table]`` section, so each one-line ``{ value, unit, source }`` leaf would become a four-line
@@ -55,6 +57,15 @@ def _schema_keys(cls: type) -> list[str]:
     return [f.name for f in dataclasses.fields(cls) if "sources" not in f.metadata]
 
 
+def _optional_keys(cls: type) -> frozenset[str]:
+    """Leaves with a default: a file written before they existed may leave them out."""
+    return frozenset(
+        f.name
+        for f in dataclasses.fields(cls)
+        if "unit" in f.metadata and f.default is not dataclasses.MISSING
+    )
+
+
 def iter_leaves(cls: type, prefix: str = "") -> Iterator[tuple[str, type, str]]:
     """Yield ``(dotted path, owning dataclass, field name)`` of every leaf in schema order."""
     sections = section_types(cls)
@@ -66,15 +77,18 @@ def iter_leaves(cls: type, prefix: str = "") -> Iterator[tuple[str, type, str]]:
             yield path, cls, name
 
 
-def _check_keys(data: Mapping[str, Any], allowed: list[str], where: str) -> None:
-    """Reject unknown keys (with the closest valid key) and report missing ones."""
+def _check_keys(
+    data: Mapping[str, Any], allowed: list[str], where: str, optional: frozenset[str] = frozenset()
+) -> None:
+    """Reject unknown keys (with the closest valid key) and report missing ones (``optional``
+    keys may be missing)."""
     for key in data:
         if key not in allowed:
             close = difflib.get_close_matches(key, allowed, n=1, cutoff=0.5)
             hint = f"; did you mean {close[0]!r}?" if close else f"; valid keys: {allowed}"
             raise ValueError(f"{where}{key}: unknown key{hint}")
     for key in allowed:
-        if key not in data:
+        if key not in data and key not in optional:
             raise ValueError(f"{where}{key}: missing key")
 
 
@@ -119,9 +133,11 @@ def _build(cls: type, data: Any, prefix: str, sources: list[tuple[str, str]]) ->
     if not isinstance(data, Mapping):
         raise ValueError(f"{prefix.rstrip('.')}: expected a table, got {data!r}")
     sections = section_types(cls)
-    _check_keys(data, _schema_keys(cls), prefix)
+    _check_keys(data, _schema_keys(cls), prefix, _optional_keys(cls))
     kwargs: dict[str, Any] = {}
     for name in _schema_keys(cls):
+        if name not in data:  # an optional leaf left out: its default, without a source
+            continue
         if name in sections:
             kwargs[name] = _build(sections[name], data[name], f"{prefix}{name}.", sources)
         else:

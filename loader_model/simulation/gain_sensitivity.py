@@ -41,6 +41,7 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
+from typing import Any
 
 import casadi as ca
 import numpy as np
@@ -208,6 +209,9 @@ def gain_gradient(
     )
     from loader_model.simulation.validity_check import raise_if_not_finite
 
+    off = scenario.at_speed(road.speed_m_s)  # type: ignore[attr-defined]
+    if off is not scenario:  # the ride control is off at this speed: no gain acts
+        return _without_ride_control(off, road, len(gains), sensors, duration_s)
     # fixed substeps, as the optimal-control bound's rollout: a change of the error-controlled
     # count would be a jump in the cost (the simulator's default is fixed too)
     period_s, substeps = CONTROLLER_PERIOD_S, DEFAULT_SUBSTEPS or FIXED_SUBSTEPS
@@ -271,6 +275,20 @@ def gain_gradient(
     columns |= {"V_p_ref": commands, "Vd_p": rates}
     columns |= dict(zip(layout.exogenous_names, exogenous[:count].T, strict=True))
     return GainGradient(a_total, gradient, refined, time_s[:count], columns)
+
+
+def _without_ride_control(
+    scenario: Any, road: Any, m: int, sensors: Any, duration_s: float | None
+) -> GainGradient:
+    """The run with the ride control off below its speed (:meth:`~loader_model.simulation.
+    scenario.Scenario.at_speed`): the simulator's, with a zero gradient."""
+    from loader_model.simulation.simulator import simulate
+
+    run = simulate(road, scenario, sensors=sensors, duration_s=duration_s)
+    columns = {name: run.columns[name] for name in scenario.plant.layout.output_names}
+    columns |= {"V_p_ref": run.columns["V_p_ref"], "Vd_p": run.columns["Vd_p"]}
+    columns |= {name: run.columns[name] for name in scenario.plant.layout.exogenous_names}
+    return GainGradient(run.seat_evaluation().total_m_s2, np.zeros(m), 0, run.time_s, columns)
 
 
 def _cost_and_gradient(

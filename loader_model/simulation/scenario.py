@@ -83,6 +83,12 @@ class Scenario:
         RIDE_CONTROLLERS`), or the Function's name for another controller.
     envelope : str
         The tyres' enveloping model, ``"tandem-cam"`` (default) or ``"rigid"``.
+    min_speed_m_s : float
+        Travel speed below which the ride control is off (the settings'
+        ``ride_control_min_speed``; 0: on at every speed).
+    off : Scenario or None
+        The machine with its ride control off (the baseline: load-holding valves closed, the
+        pump holding u0), driven below ``min_speed_m_s``; None when the gate is 0.
     """
 
     plant: PlantScenario
@@ -91,6 +97,8 @@ class Scenario:
     controller_state: np.ndarray
     name: str = ""
     envelope: str = DEFAULT_ENVELOPE
+    min_speed_m_s: float = 0.0
+    off: Scenario | None = None
 
     def __post_init__(self) -> None:
         check_envelope(self.envelope)
@@ -113,6 +121,18 @@ class Scenario:
         object.__setattr__(self, "settings", settings)
         object.__setattr__(self, "controller_state", state)
         object.__setattr__(self, "name", str(self.name or controller.name()))
+        if (self.min_speed_m_s > 0.0) != (self.off is not None):
+            raise ValueError(
+                f"min_speed_m_s = {self.min_speed_m_s!r} needs the scenario with the ride "
+                "control off (off), and off needs min_speed_m_s > 0"
+            )
+
+    def at_speed(self, speed_m_s: float) -> Scenario:
+        """The scenario driven at ``speed_m_s``: :attr:`off` below :attr:`min_speed_m_s` (the
+        ride control switched off, as commercial ride control is at low speed), else itself."""
+        if self.off is not None and float(speed_m_s) < self.min_speed_m_s:
+            return self.off
+        return self
 
     @property
     def params(self) -> np.ndarray:
@@ -234,11 +254,15 @@ def ride_scenario(
                 "built from a parameter vector without its bucket load"
             )
         pressure_norm_pa = plant.load.pressure_normalisation
-    vector, state = plant_controller_setup(
-        controller, plant, float(pressure_norm_pa), _controller_settings(settings)
-    )
+    chosen = _controller_settings(settings)
+    vector, state = plant_controller_setup(controller, plant, float(pressure_norm_pa), chosen)
     function = plant_controller(controller, None if plant.is_default_machine else plant.layout)
-    return Scenario(plant, function, vector, state, controller, envelope)
+    gate, off = chosen.ride_control_min_speed, None
+    if gate > 0.0:  # below it the machine drives as the baseline (ControllerSettings notes)
+        options = plant.options or PlantOptions.for_controller(controller)
+        resting = plant.with_options(options.with_controller("baseline"))
+        off = closed_loop(resting, name="baseline", envelope=envelope)
+    return Scenario(plant, function, vector, state, controller, envelope, gate, off)
 
 
 def resolve_scenario(

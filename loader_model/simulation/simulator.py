@@ -185,7 +185,10 @@ def simulate(
         (:class:`~loader_model.plant.scenario.PlantScenario`) or a whole closed loop
         (:class:`~loader_model.simulation.scenario.Scenario`, which holds the controller, its
         settings and its start: then ``controller``, ``settings`` and ``controller_state`` are
-        not given).
+        not given). A Scenario whose ride control is off below a speed
+        (:meth:`~loader_model.simulation.scenario.Scenario.at_speed`) drives ``road`` as the
+        baseline when the road's speed is below it; the result's metadata says so
+        (``ride_control``).
     controller : casadi.Function, optional
         ``controller(z, y, settings) -> (z_next, u)``; default: hold the static command
         (:func:`~loader_model.simulation.controllers.hold_command_controller` with u0 as its
@@ -235,7 +238,8 @@ def simulate(
     SimulationError
         If the run leaves the finite numbers (naming the time and the last finite state).
     """
-    scenario = as_scenario(params, controller, settings, controller_state)
+    given = as_scenario(params, controller, settings, controller_state)
+    scenario = given.at_speed(road.speed_m_s)  # the ride control off below its speed
     params, x0, u0 = scenario.params, scenario.x0, scenario.u0
     controller, settings_vector, z0 = (
         scenario.controller,
@@ -362,6 +366,11 @@ def simulate(
         "validity": dataclasses.asdict(monitor.bounds),
         "machine": layout.name,
     }
+    if scenario is not given:
+        metadata["ride_control"] = (
+            f"{given.name} off: {road.speed_m_s * 3.6:g} km/h is below its "
+            f"ride_control_min_speed of {given.min_speed_m_s * 3.6:g} km/h"
+        )
     result = SimulationResult(
         time_rows, columns_out, carry[: len(state_names)].copy(), events, metadata
     )

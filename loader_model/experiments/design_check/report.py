@@ -93,6 +93,18 @@ def _verdict_lines(check: DesignCheck) -> list[str]:
     return lines
 
 
+def _gate_lines(check: DesignCheck) -> list[str]:
+    gate_kmh = 3.6 * check.design.settings.ride_control_min_speed
+    slower = [c.condition.label for c in check.conditions if c.condition.speed_kmh < gate_kmh]
+    if gate_kmh <= 0.0:
+        return []
+    return [
+        f"The ride control is off below {gate_kmh:g} km/h (the settings' "
+        f"ride_control_min_speed): {len(slower)} of {len(check.conditions)} conditions drive "
+        "as the baseline"
+    ]
+
+
 def check_text(check: DesignCheck) -> str:
     """The check as aligned plain text for a terminal."""
     rows = [list(_COLUMNS), *(_row(c) for c in check.conditions)]
@@ -103,7 +115,7 @@ def check_text(check: DesignCheck) -> str:
     ]
     lines += ["  ".join(cell.ljust(w) for cell, w in zip(r, widths, strict=True)) for r in rows]
     lines += ["Linearised loop:", *(f"  {line}" for line in _margin_lines(check))]
-    lines += [line[0].upper() + line[1:] for line in _rest_lines(check)]
+    lines += [line[0].upper() + line[1:] for line in [*_rest_lines(check), *_gate_lines(check)]]
     return "\n".join([*lines, *_verdict_lines(check)])
 
 
@@ -112,7 +124,8 @@ def check_markdown(check: DesignCheck) -> str:
     header = [c.replace("|", "/") for c in _COLUMNS]
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     lines += ["| " + " | ".join(_row(c)) + " |" for c in check.conditions]
-    lines += ["", *(f"- {line}" for line in [*_margin_lines(check), *_rest_lines(check)]), ""]
+    notes = [*_margin_lines(check), *_rest_lines(check), *_gate_lines(check)]
+    lines += ["", *(f"- {line}" for line in notes), ""]
     lines += [_verdict_lines(check)[0], ""]
     lines += [f"- {reason}" for reason in check.failures]
     lines += [f"- not judged: {reason}" for reason in check.not_judged]

@@ -163,8 +163,10 @@ def condition_course(condition: Condition, envelope: Envelope) -> Any:
 
 def rest_run(design: Design, envelope: Envelope, load: str) -> RunOutcome:
     """The design at rest: on flat ground, driven only by the Table 6 trials' sensor noise
-    (seed 0), for the settle window and 2 s more; its tail is the pitch acceleration [rad/s²]
-    r.m.s. it keeps at rest (:func:`~loader_model.simulation.settling.settle_measure`)."""
+    (seed 0), for the settle window and 2 s more, at 5 km/h or at the speed above which its
+    ride control acts (the settings' ``ride_control_min_speed``) when that is higher; its tail
+    is the pitch acceleration [rad/s²] r.m.s. it keeps at rest
+    (:func:`~loader_model.simulation.settling.settle_measure`)."""
     from loader_model.control.sensors import SensorModel
     from loader_model.experiments.trials import TRIAL_SENSOR_NOISE
     from loader_model.simulation.courses import LEAD_IN_M, Course, kmh_to_m_s
@@ -172,7 +174,8 @@ def rest_run(design: Design, envelope: Envelope, load: str) -> RunOutcome:
     from loader_model.simulation.simulator import course_input, simulate
 
     flat = RoadProfile(np.array([0.0, 1.0]), np.zeros(2), "flat ground")
-    course = Course(flat, kmh_to_m_s(5.0), -LEAD_IN_M, envelope.settle_s + 2.0, "flat ground")
+    speed_m_s = max(kmh_to_m_s(5.0), design.settings.ride_control_min_speed)  # control on
+    course = Course(flat, speed_m_s, -LEAD_IN_M, envelope.settle_s + 2.0, "flat ground")
     scenario = condition_scenario(design, load, "design")
     result = simulate(
         course_input(course, scenario),
