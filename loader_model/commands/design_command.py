@@ -20,6 +20,7 @@ from loader_model.commands.design_steps import (
     designed_settings,
     machine_step,
     refine_step,
+    start_base,
 )
 
 HELP = "design the skyhook gains K_fb (LQR or ISO 2631 optimisation); Fig. 12"
@@ -74,7 +75,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="SETTINGS.toml",
         default=None,
         help="machine: start from the gains of this controller settings file (e.g. gains "
-        "refined on the course) instead of the linear design (default: the linear design)",
+        "refined on the course) instead of the linear design; its other settings (the pressure "
+        "loop's k_p, the filters, the speed below which the ride control is off) are kept in "
+        "the designed settings (default: the linear design, on the shipped settings)",
     )
     parser.add_argument(
         "--evaluations",
@@ -256,7 +259,8 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
             f"σ_Vp {e.v_p_rms * 1e6:.3f} cm³/rev, σ_pA {e.p_a_rms / 1e5:.2f} bar, "
             f"within limits: {e.within_limits}\n    {listed}"
         )
-    settings = designed_settings(final, machine)
+    base = start_base(args)  # --start's pressure loop, filters and ride-control speed
+    settings = designed_settings(final, machine, base=base)
     verdict, code = check_step(args, settings, machine, envelope, check)
     if args.output is not None and (code == 0 or args.force):
         import datetime
@@ -277,7 +281,8 @@ def _design(args: argparse.Namespace, written: list[str]) -> int:
         header = "Controller settings with designed skyhook gains (loader-model design)."
         if code != 0:
             header += " WRITTEN WITH --force: " + verdict
-        save_settings(designed_settings(final, machine, source), args.output, header=header)
+        written_settings = designed_settings(final, machine, source, base=base)
+        save_settings(written_settings, args.output, header=header)
         written.append(args.output)
         print(f"wrote {args.output}")
     elif args.output is not None:

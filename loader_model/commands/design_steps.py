@@ -5,7 +5,14 @@ from __future__ import annotations
 
 import argparse
 
-__all__ = ["CHECK_ROUNDS", "check_step", "designed_settings", "machine_step", "refine_step"]
+__all__ = [
+    "CHECK_ROUNDS",
+    "check_step",
+    "designed_settings",
+    "machine_step",
+    "refine_step",
+    "start_base",
+]
 
 #: Rounds of the design on the machine: after each, the design check runs over the whole
 #: envelope, and the conditions it finds failing join the scenarios of the next round (the
@@ -74,6 +81,7 @@ def machine_step(args: argparse.Namespace, start, machine: str, envelope=None):
     layout = plant_layout(machine)
     if args.iterations < 1:
         raise ValueError(f"--iterations {args.iterations}: allowed: an integer >= 1")
+    base = start_base(args)
     if args.start is not None:
         from loader_model.control.settings import gain_norm_factors, load_settings
 
@@ -98,11 +106,13 @@ def machine_step(args: argparse.Namespace, start, machine: str, envelope=None):
             max_iterations=args.iterations,
             progress=not args.no_progress,
             extra_conditions=extra,
+            base_settings=base,
         )
         _print_result(args, start, result)
         if envelope is None:
             break
-        check = _run_check(args, designed_settings(result.gain, machine), machine, envelope)
+        settings = designed_settings(result.gain, machine, base=base)
+        check = _run_check(args, settings, machine, envelope)
         failing = tuple(c.condition for c in check.conditions if c.failures)
         if check.passed or not failing or round_ == CHECK_ROUNDS:
             break
@@ -154,12 +164,23 @@ def _run_check(args: argparse.Namespace, settings, machine: str, envelope):
     )
 
 
-def designed_settings(gain, machine: str, source: str = "loader-model design"):
-    """The shipped settings with the designed gains (norms scaled for another machine)."""
+def start_base(args: argparse.Namespace):
+    """``--start``'s settings without their gains, every other setting kept for the design
+    (:func:`~loader_model.control.settings.without_gains`), or None."""
+    if args.start is None:
+        return None
+    from loader_model.control.settings import load_settings, without_gains
+
+    return without_gains(load_settings(args.start))
+
+
+def designed_settings(gain, machine: str, source: str = "loader-model design", base=None):
+    """``base`` (default the shipped settings) with the designed gains (norms scaled for
+    another machine)."""
     from loader_model.control.settings import default_settings, with_gains, with_scaled_gains
 
     scaled = with_scaled_gains if machine != "skid_steer" else with_gains
-    return scaled(default_settings(), gain, source)
+    return scaled(base or default_settings(), gain, source)
 
 
 def check_step(

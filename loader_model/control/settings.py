@@ -46,6 +46,7 @@ __all__ = [
     "settings_vector_for_plant",
     "with_gains",
     "with_scaled_gains",
+    "without_gains",
 ]
 
 #: Order of the ``settings`` input of every controller Function.
@@ -151,9 +152,7 @@ class ControllerSettings(Sourced):
         default=0.0,
         metadata=si(
             "m/s",
-            Range(
-                0.0, 15.0, reason="0 (always on) to 54 km/h, above any loader's travel speed"
-            ),
+            Range(0.0, 15.0, reason="0 (always on) to 54 km/h, above any loader's travel speed"),
         ),
     )
     sources: tuple[tuple[str, str], ...] = sources_field()
@@ -207,6 +206,16 @@ def with_scaled_gains(
                 "source": f"{source}: scaled by {factor:.6g} with its gains (same control law)",
             }
     return with_gains(_parse(dumps(raw), "scaled norms"), gains, source)
+
+
+def without_gains(settings: ControllerSettings) -> ControllerSettings:
+    """``settings`` with the shipped feedback norms and gains (Table 3) in place of its own: the
+    base a designed gain is written into, every other setting kept (k_p, τ, the filters, the
+    speed below which the ride control is off)."""
+    raw, shipped = to_raw(settings), to_raw(default_settings())
+    for name in ("k_fb", "linear_acceleration_norm", "angular_acceleration_norm", "angle_norm"):
+        raw[name] = shipped[name]
+    return _parse(dumps(raw), "settings without their gains")
 
 
 def gain_norm_factors(settings: ControllerSettings) -> np.ndarray:

@@ -123,11 +123,12 @@ class MachineDesign:
     wall_s: float
 
 
-def _settings(gain: np.ndarray, layout: PlantLayout) -> Any:
+def _settings(gain: np.ndarray, layout: PlantLayout, base: Any = None) -> Any:
+    """``base`` (default the shipped settings, on the shipped norms) with the gains ``gain``."""
     from loader_model.control.settings import default_settings, with_gains, with_scaled_gains
 
     scaled = with_gains if layout.machine.is_default else with_scaled_gains
-    return scaled(default_settings(), gain, "loader-model design --method machine")
+    return scaled(base or default_settings(), gain, "loader-model design --method machine")
 
 
 def _baselines(design: Design, envelope: Envelope, conditions: list[Condition]) -> list[float]:
@@ -159,14 +160,16 @@ class _Problem:
         sampled: int,
         study: str | None,
         extra_conditions: tuple[Condition, ...] = (),
+        base: Any = None,
     ):
         from loader_model.control.comfort_design import comfort_plants
         from loader_model.experiments.design_check.margins import sampled_plants
 
         self.layout, self.params, self.envelope, self.margin = layout, params, envelope, margin
+        self.base = base
         self.conditions = list(envelope.conditions())
         self.conditions += [c for c in extra_conditions if c not in self.conditions]
-        probe = self._design(_settings(np.zeros(4), layout))
+        probe = self._design(_settings(np.zeros(4), layout, base))
         self.baseline = _baselines(probe, envelope, self.conditions)
         nominal = None
         if not layout.machine.is_default or params is not None:
@@ -191,7 +194,7 @@ class _Problem:
         from loader_model.simulation.validity_check import SimulationError
 
         try:
-            settings = _settings(gain, self.layout)
+            settings = _settings(gain, self.layout, self.base)
         except ValueError as error:  # outside the settings' range
             return f"outside the settings' range: {error}"
         worst = min(e.loop_margin for e in evaluate_gain(self.plants, gain.reshape(1, 4)))
@@ -264,6 +267,7 @@ def design_on_machine(
     sampled_plants: int = 16,
     study: str | None = None,
     extra_conditions: tuple[Condition, ...] = (),
+    base_settings: Any = None,
 ) -> MachineDesign:
     """Minimise J over ``envelope``'s scenarios from ``start_gain`` (module notes).
 
@@ -296,6 +300,11 @@ def design_on_machine(
     extra_conditions : tuple of Condition
         Scenarios added to ``envelope``'s (for example the conditions a design check found
         failing), driven with ``envelope``'s settle window and road length.
+    base_settings : ControllerSettings, optional
+        The settings the gains are designed in, on the shipped norms
+        (:func:`~loader_model.control.settings.without_gains`): their pressure loop, filters
+        and the speed below which the ride control is off are kept (default the shipped
+        settings, Table 3).
 
     Raises
     ------
@@ -312,8 +321,9 @@ def design_on_machine(
         raise ValueError(f"max_iterations = {max_iterations!r}; allowed: an integer >= 1")
     start_wall = time.perf_counter()
     problem = _Problem(
-        layout, params, envelope, float(margin), sampled_plants, study, extra_conditions
-    )
+        layout, params, envelope, float(margin), sampled_plants, study, extra_conditions,
+        base_settings,
+    )  # fmt: skip
     given = np.asarray(start_gain, dtype=float).ravel()
     if given.size != 4 or not np.all(np.isfinite(given)):
         raise ValueError(f"start_gain = {given.tolist()}; allowed: 4 finite gains")

@@ -139,3 +139,24 @@ def test_the_rest_level_is_the_ride_controls_own_above_its_speed() -> None:
     # the same noise over a lead-in of another length: the last second's r.m.s. of a stationary
     # response differs by its sampling scatter (0.0182 against 0.0132 rad/s², measured)
     assert gated.tail_rms == pytest.approx(ungated.tail_rms, rel=0.5)
+
+
+def test_a_design_keeps_the_starts_settings_but_its_gains(tmp_path) -> None:
+    import argparse
+
+    from loader_model.commands.design_steps import designed_settings, start_base
+    from loader_model.control.settings import with_scaled_gains
+
+    start = dataclasses.replace(
+        with_scaled_gains(_gated(), [220.0, 5.1, -4.0, 0.22], "start"), k_p=0.8
+    )
+    path = tmp_path / "start.toml"
+    save_settings(start, path)
+    base = start_base(argparse.Namespace(start=str(path)))
+    assert base is not None and start_base(argparse.Namespace(start=None)) is None
+    written = designed_settings([1.0, 2.0, -3.0, 0.5], "compact_wheel_loader", "test", base=base)
+    assert written.k_fb == (1.0, 2.0, -3.0, 0.5)
+    assert (written.k_p, written.ride_control_min_speed) == (0.8, GATE_KMH / 3.6)
+    shipped = default_settings()
+    assert written.linear_acceleration_norm == shipped.linear_acceleration_norm  # not the start's
+    assert start.linear_acceleration_norm < shipped.linear_acceleration_norm
