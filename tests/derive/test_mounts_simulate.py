@@ -19,7 +19,7 @@ from loader_model.cli import main
 #: Deriving with SymPy about 40 s, the 4 s board run a few seconds (2-core machine).
 pytestmark = pytest.mark.slow
 
-EXAMPLE = Path(__file__).resolve().parents[2] / "docs" / "examples" / "tractor_front_loader"
+ROOT = Path(__file__).resolve().parents[2]
 G = 9.80665
 
 #: The example's sliding cab replaced by a cab on two mounts and a suspension seat.
@@ -81,7 +81,9 @@ POINTS = {"F": (-0.15, 0.2), "R": (-1.25, 0.2), "W": (-0.6, 0.25), "Y": (-0.6, 0
 
 
 def _variant(folder: Path) -> tuple[Path, Path]:
-    description = (EXAMPLE / "tractor_front_loader.toml").read_text(encoding="utf-8")
+    description = (ROOT / "derive" / "machines" / "tractor_front_loader.toml").read_text(
+        encoding="utf-8"
+    )
     start = description.index("[bodies.cab]")
     end = description.index("[[axles]]")
     cab = description[start:end]
@@ -97,7 +99,9 @@ def _variant(folder: Path) -> tuple[Path, Path]:
         f'{name} = {{ unit = "{unit}", description = "{source}", source = "test" }}'
         for name, unit, _, source in NEW
     ]
-    values = (EXAMPLE / "tractor_front_loader_values.toml").read_text(encoding="utf-8")
+    values = (ROOT / "loader_model" / "data" / "machines" / "tractor_front_loader.toml").read_text(
+        encoding="utf-8"
+    )
     values = "\n".join(
         line for line in values.splitlines() if not line.startswith(("k_cab =", "c_cab ="))
     )

@@ -1,7 +1,8 @@
 """A machine described outside the package runs every command that builds a model.
 
 The tractor of docs/examples/tractor_front_loader.md (its own tyres per axle, the pump-controlled
-lift circuit, a cab on a sliding mount that carries the seat), derived into the session's
+lift circuit, a cab on a sliding mount that carries the seat), under a name of its own (the
+package ships the same machine as ``tractor_front_loader``) and derived into the session's
 temporary cache, given to each command by ``--machine FILE --params FILE`` (or the study file's
 ``machine`` and ``params``): each ends with its exit code for a run (0; the design check's 4 for
 a design that fails it) and prints or writes what it is for. The commands that reproduce the
@@ -17,7 +18,7 @@ import pytest
 
 from loader_model.cli import main
 from loader_model.commands.check_design_command import EXIT_CHECK_FAILED
-from tests.examples.test_tractor_front_loader import DESCRIPTION, VALUES, machine_args
+from tests.examples.test_tractor_front_loader import machine_args
 
 #: Deriving with SymPy about 10 s, then a few seconds per command (2-core machine).
 pytestmark = pytest.mark.slow
@@ -70,8 +71,8 @@ def test_design_and_its_check(machine_args: list[str], tmp_path: Path, capsys) -
 def test_robustness_study(tmp_path: Path, capsys, machine_args: list[str]) -> None:
     study = tmp_path / "study.toml"
     study.write_text(
-        f'[study]\nname = "tractor"\nmachine = "{DESCRIPTION.as_posix()}"\n'
-        f'params = "{VALUES.as_posix()}"\nseed = 1\nsamples = 2\nduration_s = 3.0\n'
+        f'[study]\nname = "tractor"\nmachine = "{Path(machine_args[1]).as_posix()}"\n'
+        f'params = "{Path(machine_args[3]).as_posix()}"\nseed = 1\nsamples = 2\nduration_s = 3.0\n'
         'batch_size = 2\n[conditions]\nspeeds_kmh = [9.0]\n[controllers]\ncompare = ["skyhook"]\n'
         '[parameters]\n"hydraulics.bulk_modulus" = { distribution = "uniform", low = 0.8e9, '
         'high = 1.8e9, unit = "Pa" }\n',

@@ -1,10 +1,11 @@
-"""The worked example of docs/examples/tractor_front_loader.md: a machine described outside the
-package (a tractor with a front loader: boom and bucket on their own pins, the tilt cylinders
-held, a cab on a sliding mount), derived into a temporary cache, and what the page claims of it:
-its static axle loads equal the hand calculation of its values file, the rear axle lifts off at
-the boards with the full bucket, the linear comfort design is refused by the design check
-(full bucket: worse than the baseline, the pump at its limits, a persistent oscillation) while
-the empty bucket's condition passes, and Table 3's gains pass the full bucket's boards."""
+"""The worked example of docs/examples/tractor_front_loader.md: a machine described as a user
+describes their own, here under a name of its own outside the package (a tractor with a front
+loader: boom and bucket on their own pins, the tilt cylinders held, a cab on a sliding mount),
+derived into a temporary cache, and what the page claims of it: its static axle loads equal the
+hand calculation of its values file, the rear axle lifts off at the boards with the full bucket,
+the linear comfort design is refused by the design check (full bucket: worse than the baseline,
+the pump at its limits, a persistent oscillation) while the empty bucket's condition passes, and
+Table 3's gains pass the full bucket's boards."""
 
 from __future__ import annotations
 
@@ -21,23 +22,40 @@ from loader_model.commands.check_design_command import EXIT_CHECK_FAILED
 #: Deriving with SymPy about 10 s, the reduced design check about 15 s (2-core machine).
 pytestmark = pytest.mark.slow
 
-EXAMPLE = Path(__file__).resolve().parents[2] / "docs" / "examples" / "tractor_front_loader"
-DESCRIPTION = EXAMPLE / "tractor_front_loader.toml"
-VALUES = EXAMPLE / "tractor_front_loader_values.toml"
+ROOT = Path(__file__).resolve().parents[2]
+#: The example's files: the package ships them as the machine ``tractor_front_loader``.
+DESCRIPTION = ROOT / "derive" / "machines" / "tractor_front_loader.toml"
+VALUES = ROOT / "loader_model" / "data" / "machines" / "tractor_front_loader.toml"
 G = 9.80665  # the values file's g
 #: The centre of gravity of each body (x in the chassis frame at p = 0) and its mass.
 BODIES = (("H", "m_1"), ("Z", "m_cab"), ("G", "m_2"), ("Q", "m_3"))
 
 
+#: The name the example's copy takes outside the package: the package ships the example as
+#: ``tractor_front_loader``, and a description of a shipped name resolves to the shipped machine.
+EXTERNAL_NAME = "my_tractor"
+
+
 @pytest.fixture(scope="module")
-def machine_args() -> list[str]:
-    """``--machine``/``--params`` of the example, derived into the session's temporary cache."""
+def machine_args(tmp_path_factory: pytest.TempPathFactory) -> list[str]:
+    """``--machine``/``--params`` of the example as a user's own machine: its description under
+    another name in a folder of its own, derived into the session's temporary cache."""
     from derive.__main__ import main as derive_main
     from loader_model.machines import generated_folder
 
-    assert derive_main([str(DESCRIPTION)]) == 0
-    assert (generated_folder(DESCRIPTION) / "__init__.py").is_file()
-    return ["--machine", str(DESCRIPTION), "--params", str(VALUES)]
+    # one folder per session (and worker): a second module's copy would be another machine of
+    # the same name, which a process refuses
+    folder = tmp_path_factory.getbasetemp() / "my_machine"
+    folder.mkdir(exist_ok=True)
+    text = DESCRIPTION.read_text(encoding="utf-8")
+    renamed = text.replace('name = "tractor_front_loader"', f'name = "{EXTERNAL_NAME}"', 1)
+    assert renamed != text
+    description, values = folder / f"{EXTERNAL_NAME}.toml", folder / f"{EXTERNAL_NAME}_values.toml"
+    description.write_text(renamed, encoding="utf-8")
+    values.write_text(VALUES.read_text(encoding="utf-8"), encoding="utf-8")
+    assert derive_main([str(description)]) == 0
+    assert (generated_folder(description) / "__init__.py").is_file()
+    return ["--machine", str(description), "--params", str(values)]
 
 
 def _values(load: str) -> dict[str, float]:

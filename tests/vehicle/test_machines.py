@@ -26,7 +26,7 @@ SHIPPED = (DATA / "compact_wheel_loader.toml").read_text(encoding="utf-8")
 
 
 def test_every_generated_machine_is_listed_with_its_metadata() -> None:
-    assert list_machines() == ("compact_wheel_loader", "skid_steer")
+    assert list_machines() == ("compact_wheel_loader", "skid_steer", "tractor_front_loader")
     info = machine("compact_wheel_loader")
     assert info.package == "loader_model_generated.compact_wheel_loader"
     assert info.coordinate_names == wl.COORDINATE_NAMES and info.n_coordinates == 5
@@ -171,3 +171,18 @@ def test_coordinate_units_come_from_the_joints() -> None:
     assert units == ["m", "m", "rad", "rad", "rad"]
     with pytest.raises(ValueError, match="coordinate 'theta_9': allowed"):
         info.coordinate_unit("theta_9")
+
+
+def test_the_tractor_examples_files_are_the_shipped_machines() -> None:
+    """docs/examples/tractor_front_loader/ holds the shipped tractor's description and values
+    as a user keeps them: byte for byte the same, so the example's commands run the shipped
+    generated package (a description of a shipped name resolves to it by its hash)."""
+    root = DATA.parents[2]
+    example = root / "docs" / "examples" / "tractor_front_loader"
+    pairs = (
+        (example / "tractor_front_loader.toml", root / "derive" / "machines"),
+        (example / "tractor_front_loader_values.toml", DATA),
+    )
+    for copy, folder in pairs:
+        assert copy.read_bytes() == (folder / "tractor_front_loader.toml").read_bytes(), copy
+    assert resolve_machine_name(example / "tractor_front_loader.toml") == "tractor_front_loader"
