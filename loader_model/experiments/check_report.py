@@ -43,6 +43,11 @@ SHIPPED_DESIGNS: tuple[ShippedDesign, ...] = (
         "controller_machine_compact_wheel_loader.toml",
         "design_check_compact_wheel_loader.md",
     ),
+    ShippedDesign(
+        "tractor_front_loader",
+        "controller_machine_tractor_front_loader.toml",
+        "design_check_tractor_front_loader.md",
+    ),
 )
 
 
@@ -78,10 +83,17 @@ def check_section() -> str:
         with as_file(resources.files("loader_model").joinpath("data", design.settings)) as path:
             settings = load_settings(path)
         gains = ", ".join(f"{k:.3f}" for k in settings.k_fb)
+        gate_kmh = 3.6 * settings.ride_control_min_speed
+        gate = (
+            f" The ride control is off below {gate_kmh:g} km/h "
+            f"({settings.source('ride_control_min_speed')})."
+            if gate_kmh > 0.0
+            else ""
+        )
         lines += [
             f"### {design.machine.replace('_', ' ')}\n",
             f"K_fb = ({gains}) in `loader_model/data/{design.settings}`, made by "
-            f"{settings.source('k_fb')}.\n",
+            f"{settings.source('k_fb')}.{gate}\n",
             shipped_check_text(design).strip() + "\n",
         ]
     return "\n".join(lines)

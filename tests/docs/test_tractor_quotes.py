@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 from tests.docs.test_kept_outputs import HEADER
@@ -56,3 +57,45 @@ def test_table3_and_zero_gain_changes_are_the_kept_checks() -> None:
             f"empty, ISO {road} 5 km/h"
         ]
         assert 100.0 * (float(passive) / float(baseline) - 1.0) > 1.9
+
+
+def test_the_shipped_designs_figures_are_its_checks() -> None:
+    """Section 6's figures of the shipped tractor design, from its shipped check."""
+    text = (ROOT / "loader_model" / "data" / "design_check_tractor_front_loader.md").read_text(
+        encoding="utf-8"
+    )
+    changes = {}
+    for line in text.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) == 11 and cells[0].startswith(("empty, ", "full, ")):
+            changes[cells[0]] = float(cells[4])
+    assert len(changes) == 26
+    slow = [c for c in changes if float(c.split()[-2]) < 9.5]
+    assert len(slow) == 10 and all(changes[c] == 0.0 for c in slow)
+    worse = sorted(c for c, v in changes.items() if v > 0.0)
+    assert worse == sorted(
+        [
+            "empty, boards 13.5 km/h",
+            "empty, ISO C 30 km/h",
+            "empty, ISO D 30 km/h",
+            "full, ISO D 30 km/h",
+        ]
+    )
+    page = flat(PAGE.read_text(encoding="utf-8"))
+    quotes = [
+        f"the empty bucket's boards at 13.5 km/h {changes['empty, boards 13.5 km/h']:+.1f} %",
+        f"the class C and D roads at 30 km/h {changes['empty, ISO C 30 km/h']:+.1f} % and "
+        f"{changes['empty, ISO D 30 km/h']:+.1f} %",
+        f"the full bucket's class D road at 30 km/h {changes['full, ISO D 30 km/h']:+.1f} %",
+        f"{-changes['full, boards 13.5 km/h']:.1f} % better on the full bucket's boards at 13.5 km/h",
+        f"{-max(changes[c] for c in ('full, ISO B 30 km/h', 'full, ISO C 30 km/h')):.1f}-"
+        f"{-min(changes[c] for c in ('full, ISO B 30 km/h', 'full, ISO C 30 km/h')):.1f} % on the "
+        "full bucket's class B and C roads at 30 km/h",
+    ]
+    fifteen = [v for c, v in changes.items() if "15 km/h" in c] + [changes["empty, boards 18 km/h"]]
+    quotes.append(f"{-max(fifteen):.1f}-{-min(fifteen):.1f} % better than the baseline")
+    margins = re.findall(r"loop margin (\d\.\d+) rad/s", text)
+    quotes.append(f"The loop's margin is {margins[0]} rad/s with the empty bucket")
+    quotes.append(f"and {margins[1]} with the full one")
+    for quote in quotes:
+        assert flat(quote) in page, f"the tractor page should quote {quote!r}"
