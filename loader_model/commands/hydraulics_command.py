@@ -44,8 +44,8 @@ def run(args: argparse.Namespace) -> int:
     info = layout.machine
     report = hydraulics_report(args.params, args.load, highpass_rad_s=args.highpass, machine=layout)
     static = report.static_outputs
-    name = "" if info.is_default else f"{info.title}: "
-    print(f"{name}Hydraulic plant, bucket load {args.load}")
+    machine_label = "" if info.is_default else f"{info.title}: "
+    print(f"{machine_label}Hydraulic plant, bucket load {args.load}")
     print(f"  static piston pressure p_A   {static['p_A'] / 1e5:10.2f} bar (gauge)")
     valve = info.circuit == "valve"
     rod_side = "tank line" if valve else "charge line"
@@ -94,7 +94,10 @@ def run(args: argparse.Namespace) -> int:
         + ", zero "
         + ", ".join(f"{z:.3g}" for z in reference.reference_zeros)
     )
-    title = f"{name}Pressure loop of the detailed plant and Eq. 43 (load {args.load})"
+    paper_curve = "Eq. 43" if info.is_default else "the skid-steer's Eq. 43"
+    title = f"Pressure loop of the detailed plant and {paper_curve} (load {args.load})"
+    if not info.is_default:
+        title = f"{info.title}\n{title}"
     write_atomically(
         args.plot,
         lambda temporary: plot_pressure_loop(report, temporary, title),

@@ -31,13 +31,14 @@ def _run(argv: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, str]
     return code, capsys.readouterr().out
 
 
-def test_model_modes_and_hydraulics(machine_args: list[str], capsys) -> None:
+def test_model_modes_and_hydraulics(machine_args: list[str], tmp_path: Path, capsys) -> None:
     code, out = _run(["model", *machine_args, "--load", "full"], capsys)
     assert code == 0 and "Static equilibrium" in out and "F_Ay0" in out
     code, out = _run(["modes", *machine_args, "--load", "full"], capsys)
     assert code == 0 and "Hz" in out
-    code, out = _run(["hydraulics", *machine_args, "--load", "empty"], capsys)
-    assert code == 0 and "bar" in out
+    plot = tmp_path / "pressure_loop.png"
+    code, out = _run(["hydraulics", *machine_args, "--load", "empty", "--plot", str(plot)], capsys)
+    assert code == 0 and "bar" in out and plot.stat().st_size > 0
 
 
 def test_simulate_and_export_fmu(machine_args: list[str], tmp_path: Path, capsys) -> None:
