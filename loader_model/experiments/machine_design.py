@@ -54,7 +54,7 @@ from loader_model.experiments.design_check.runs import (
     condition_scenario,
     rest_level,
 )
-from loader_model.experiments.design_check.verdict import MARGIN_RTOL
+from loader_model.experiments.design_check.verdict import ACTUATOR_NAMES, MARGIN_RTOL
 from loader_model.experiments.stable_start import nearest_stable_gain
 from loader_model.plant.layout import SKID_STEER, PlantLayout
 
@@ -227,7 +227,8 @@ class _Problem:
                 return f"{condition.label}: persistent oscillation after the road"
             if duty.command > self.envelope.command_duty or duty.rate > self.envelope.rate_duty:
                 return (
-                    f"{condition.label}: pump at its limits (command {duty.command:.1%}, rate "
+                    f"{condition.label}: {ACTUATOR_NAMES[self.layout.machine.circuit]} at its "
+                    f"limits (command {duty.command:.1%}, rate "
                     f"{duty.rate:.1%} of the run)"
                 )
             ratio = run.a_total / self.baseline[index]

@@ -77,6 +77,35 @@ def test_a_condition_worse_than_baseline_is_named(decaying) -> None:
     assert judged.change == pytest.approx(0.1, rel=1e-12)
 
 
+@pytest.mark.parametrize(
+    ("circuit", "command", "rate"),
+    [
+        (
+            "pump",
+            "pump command at V_p,max for 6.0%",
+            "pump displacement rate at its limit for 20.0%",
+        ),
+        (
+            "valve",
+            "spool command at its stroke x_s,max for 6.0%",
+            "spool velocity at its limit for 20.0%",
+        ),
+    ],
+)
+def test_the_actuators_limits_are_named_for_the_machines_circuit(
+    decaying, circuit, command, rate
+) -> None:
+    from loader_model.experiments.design_check import judge_condition
+
+    (condition,) = decaying.conditions
+    runs = dict(condition.runs)
+    baseline = runs["baseline"]
+    runs["design"] = type(baseline)(**{**baseline.__dict__, "command_duty": 0.06, "rate_duty": 0.2})
+    envelope = Envelope(loads=("empty",), board_speeds_kmh=(9.0,), road_classes=())
+    failures = judge_condition(condition.condition, runs, envelope, circuit=circuit).failures
+    assert failures == (f"{command} of the run (allowed 5%)", f"{rate} of the run (allowed 10%)")
+
+
 def test_motion_at_the_level_of_the_sensors_noise_is_not_an_oscillation(limit_cycle) -> None:
     """A run that keeps its level after the road counts as persistent only above twice what
     the design keeps at rest with its sensors' noise alone (rest_level, measured per load)."""

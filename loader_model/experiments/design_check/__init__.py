@@ -167,7 +167,9 @@ def check_design(
     rest = {load: rest_run(design, envelope, load) for load in envelope.loads}
     floor = {load: run.tail_rms if holds_still(run) else 0.0 for load, run in rest.items()}
     checks = tuple(
-        judge_condition(condition, outcome, envelope, floor[condition.load])
+        judge_condition(
+            condition, outcome, envelope, floor[condition.load], design.layout.machine.circuit
+        )
         for condition, outcome in zip(conditions, runs, strict=True)
     )
     return DesignCheck(design, envelope, checks, margins, rest)

@@ -8,7 +8,7 @@ import io
 import math
 
 from loader_model.experiments.design_check.runs import COMPARED, RunOutcome
-from loader_model.experiments.design_check.verdict import DesignCheck
+from loader_model.experiments.design_check.verdict import ACTUATOR_NAMES, DesignCheck
 
 __all__ = ["check_csv", "check_markdown", "check_text"]
 
@@ -83,8 +83,8 @@ def _verdict_lines(check: DesignCheck) -> list[str]:
     judged = sum(c.judged for c in check.conditions)
     head = (
         f"PASSED: {judged} conditions judged, none worse than the baseline by more than "
-        f"{check.envelope.worse_than_baseline:.0%}, no persistent oscillation, pump limits within "
-        "bounds"
+        f"{check.envelope.worse_than_baseline:.0%}, no persistent oscillation, "
+        f"{ACTUATOR_NAMES[check.design.layout.machine.circuit]} limits within bounds"
         if check.passed
         else f"FAILED: {len(check.failures)} finding(s) over {judged} judged conditions"
     )

@@ -121,7 +121,8 @@ class DesignCheck:
                 found.append(f"{load}, at rest with the sensors' noise alone: {run.stopped}")
             elif run.command_duty > 0.0 or run.rate_duty > 0.0:
                 found.append(
-                    f"{load}, at rest with the sensors' noise alone: the pump at its limits "
+                    f"{load}, at rest with the sensors' noise alone: the "
+                    f"{ACTUATOR_NAMES[self.design.layout.machine.circuit]} at its limits "
                     f"(command {run.command_duty:.1%}, rate {run.rate_duty:.1%} of the run), "
                     f"pitch acceleration {run.tail_rms:.3f} rad/s² r.m.s.: the loop does not "
                     "hold still"
@@ -145,14 +146,25 @@ class DesignCheck:
         )
 
 
+#: Per lift circuit, how the findings name its command and its rate at their limits.
+ACTUATOR_LIMITS: dict[str, tuple[str, str]] = {
+    "pump": ("pump command at V_p,max", "pump displacement rate at its limit"),
+    "valve": ("spool command at its stroke x_s,max", "spool velocity at its limit"),
+}
+#: Per lift circuit, the actuator whose limits the check judges.
+ACTUATOR_NAMES: dict[str, str] = {"pump": "pump", "valve": "valve spool"}
+
+
 def judge_condition(
     condition: Condition,
     runs: dict[str, RunOutcome],
     envelope: Envelope,
     rest_rms: float = 0.0,
+    circuit: str = "pump",
 ) -> ConditionCheck:
     """The failures of the design's run against the baseline's (module notes); ``rest_rms``
-    is the level [rad/s²] the design keeps at rest with its sensors' noise on this load."""
+    is the level [rad/s²] the design keeps at rest with its sensors' noise on this load;
+    ``circuit`` (``"pump"`` or ``"valve"``) names the actuator in the findings."""
     from loader_model.simulation.settling import REST_FLOOR_RAD_S2, REST_NOISE_FACTOR
 
     design, baseline = runs["design"], runs["baseline"]
@@ -168,15 +180,15 @@ def judge_condition(
             f"against the baseline's {baseline.a_total:.3f} (allowed "
             f"{envelope.worse_than_baseline:+.0%})"
         )
+    command, rate = ACTUATOR_LIMITS[circuit]
     if design.command_duty > envelope.command_duty:
         failures.append(
-            f"pump command at V_p,max for {design.command_duty:.1%} of the run (allowed "
+            f"{command} for {design.command_duty:.1%} of the run (allowed "
             f"{envelope.command_duty:.0%})"
         )
     if design.rate_duty > envelope.rate_duty:
         failures.append(
-            f"pump displacement rate at its limit for {design.rate_duty:.1%} of the run (allowed "
-            f"{envelope.rate_duty:.0%})"
+            f"{rate} for {design.rate_duty:.1%} of the run (allowed {envelope.rate_duty:.0%})"
         )
     floor = max(REST_FLOOR_RAD_S2, REST_NOISE_FACTOR * rest_rms)
     if design.persistent and design.tail_rms > floor:
