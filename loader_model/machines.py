@@ -25,7 +25,7 @@ Examples
 --------
 >>> from loader_model.machines import list_machines, machine
 >>> list_machines()
-('compact_wheel_loader', 'skid_steer')
+('compact_wheel_loader', 'skid_steer', 'tractor_front_loader')
 >>> machine("compact_wheel_loader").coordinate_names
 ('x_H', 'y_H', 'theta_1', 'theta_2', 'theta_3')
 """
@@ -54,6 +54,7 @@ from loader_model.machine_packages import (
     generated_folder,
     register_external,
 )
+from loader_model.machine_structure import Cylinder, description_structure
 
 __all__ = [
     "DEFAULT_MACHINE",
@@ -70,17 +71,6 @@ __all__ = [
 DEFAULT_MACHINE = "skid_steer"
 _ROOT_PACKAGE = "loader_model_generated"
 _SUFFIX = ".machine.toml"
-
-
-@dataclass(frozen=True)
-class Cylinder:
-    """A cylinder of the description between two points (base on the parent body, rod end)."""
-
-    name: str
-    kind: str
-    """``"driven"`` (the lift cylinder group of the hydraulic plant) or ``"locked"`` (a spring)."""
-    base: str
-    rod: str
 
 
 @dataclass(frozen=True, eq=False)
@@ -290,70 +280,6 @@ def resolve_machine_name(source: str | os.PathLike[str]) -> str:
     return name
 
 
-def _angle_coordinate(bodies: dict[str, Any], name: str) -> str:
-    """The coordinate that is the absolute angle of body ``name`` (a slider: its parent's)."""
-    body = bodies[name]
-    if body["joint"] == "free":
-        return body["coordinates"][2]
-    if body["joint"] == "slider":
-        return _angle_coordinate(bodies, body["parent"])
-    if body["joint"] == "two_mounts":
-        return body["coordinates"][1]
-    return body["coordinate"]
-
-
-def _structure(raw: dict[str, Any]) -> dict[str, Any]:
-    """Axles, cylinders, sensors, bodies and ranges of a parsed description (checked by derive)."""
-    bodies = raw["bodies"]
-    chassis = next(body for body in bodies.values() if body["joint"] == "free")
-    sensors = {point: tuple(item["axes"]) for point, item in raw.get("sensors", {}).items()}
-    seat = [p for p, item in raw.get("sensors", {}).items() if "seat" in item.get("label", "")]
-    low, high = raw["machine"].get("point_range", (-10.0, 10.0))
-    ranges = {n: tuple(item["range"]) for n, item in raw["parameters"].items() if "range" in item}
-    points = [chassis["reference"]] + [p for body in bodies.values() for p in body["points"]]
-    ranges |= {f"{p}_{axis}": (low, high) for p in points for axis in "xy"}
-    cylinders = tuple(
-        Cylinder(name, item["kind"], item["base"], item["rod"])
-        for name, item in raw.get("actuators", {}).items()
-    )
-    axles = tuple(item["point"] for item in raw["axles"])
-    tyres = raw.get("tyres", {})
-    # the internal spring-dampers' preloads, as derive names them: locked cylinders, then the
-    # mounts in body order (a slider F_<body>0, a two-point mount F_<body>_<point>0 per mount)
-    locked = [f"F_{item.name}0" for item in cylinders if item.kind == "locked"]
-    for name, body in bodies.items():
-        if body["joint"] == "slider":
-            locked.append(f"F_{name}0")
-        locked += [f"F_{name}_{point}0" for point in body.get("mounts", ())]
-    circuit = raw.get("circuit", {})
-    return {
-        "circuit": circuit.get("kind", "pump"),
-        "circuit_supply": circuit.get("supply", "load_sensing"),
-        "title": raw["machine"]["title"],
-        "bodies": tuple(bodies),
-        "joint_angles": tuple(b["joint_angle"] for b in bodies.values() if "joint_angle" in b),
-        "joint_coordinates": tuple(
-            (body["coordinate"], _angle_coordinate(bodies, body["parent"]))
-            for body in bodies.values()
-            if "joint_angle" in body
-        ),
-        "length_coordinates": (
-            *chassis["coordinates"][:2],
-            *(body["coordinate"] for body in bodies.values() if body["joint"] == "slider"),
-            *(body["coordinates"][0] for body in bodies.values() if body["joint"] == "two_mounts"),
-        ),
-        "axles": axles,
-        "cylinders": cylinders,
-        "sensor_points": sensors,
-        "seat_point": seat[0] if seat else "S",
-        "parameter_ranges": ranges,
-        "static_names": (*(f"F_{axle}y0" for axle in axles), *locked),
-        "point_names": tuple(sorted(points)),
-        "tyre_units": {name: item["unit"] for name, item in tyres.items()},
-        "tyre_ranges": {name: tuple(item["range"]) for name, item in tyres.items()},
-    }
-
-
 def machine(source: str | os.PathLike[str] = DEFAULT_MACHINE) -> MachineInfo:
     """The registry entry of a generated machine, by name or description file.
 
@@ -409,7 +335,7 @@ def _machine(name: str) -> MachineInfo:
         missing = [f for f in functions if importlib.util.find_spec(f"{package}.{f}") is None]
         if missing:
             raise ImportError(f"no module {', '.join(missing)} of its FUNCTION_NAMES")
-        structure = _structure(raw)
+        structure = description_structure(raw)
     except (Exception, SystemExit) as error:
         raise ValueError(
             f"machine {name!r}: its generated package {package} or description {path} is broken "
