@@ -47,7 +47,7 @@ import casadi as ca
 import numpy as np
 
 from loader_model.control.sensors import quantise
-from loader_model.plant.layout import PlantLayout
+from loader_model.plant.layout import CIRCUITS, PlantLayout
 from loader_model.plant.plant import plant_function
 from loader_model.simulation import refinement
 from loader_model.simulation.compiled import CompilationError, compiled_function
@@ -150,7 +150,8 @@ class GainGradient:
     time_s : numpy.ndarray
         The controller's instants.
     columns : dict of str to numpy.ndarray
-        The command ``V_p_ref``, the displacement rate ``Vd_p``, the seat's signals and the
+        The command ``V_p_ref``, the displacement rate ``Vd_p`` (a valve circuit's ``x_s_ref``
+        and ``xd_s``), the seat's signals and the
         exogenous inputs at those instants (what
         :func:`~loader_model.simulation.settling.limit_duty` and
         :func:`~loader_model.simulation.settling.settle_measure` read).
@@ -235,7 +236,8 @@ def gain_gradient(
     carry = np.concatenate([carry, np.zeros(ncarry * m)])
     outputs = np.empty((count, ny * (1 + m)))
     commands, rates = np.empty(count), np.empty(count)
-    rate_row = layout.state_names.index("Vd_p")
+    command_name, rate_name = layout.input_names[0], CIRCUITS[layout.circuit][1]
+    rate_row = layout.state_names.index(rate_name)
     refined = 0
     start = 0
     while start < count:
@@ -272,7 +274,7 @@ def gain_gradient(
         start += size
     a_total, gradient = _cost_and_gradient(outputs, ny, m, layout.output_names, seat_signal_names())
     columns = {name: outputs[:, i] for i, name in enumerate(layout.output_names)}
-    columns |= {"V_p_ref": commands, "Vd_p": rates}
+    columns |= {command_name: commands, rate_name: rates}
     columns |= dict(zip(layout.exogenous_names, exogenous[:count].T, strict=True))
     return GainGradient(a_total, gradient, refined, time_s[:count], columns)
 
@@ -285,9 +287,9 @@ def _without_ride_control(
     from loader_model.simulation.simulator import simulate
 
     run = simulate(road, scenario, sensors=sensors, duration_s=duration_s)
-    columns = {name: run.columns[name] for name in scenario.plant.layout.output_names}
-    columns |= {"V_p_ref": run.columns["V_p_ref"], "Vd_p": run.columns["Vd_p"]}
-    columns |= {name: run.columns[name] for name in scenario.plant.layout.exogenous_names}
+    layout = scenario.plant.layout
+    kept = (*layout.output_names, layout.input_names[0], CIRCUITS[layout.circuit][1])
+    columns = {name: run.columns[name] for name in (*kept, *layout.exogenous_names)}
     return GainGradient(run.seat_evaluation().total_m_s2, np.zeros(m), 0, run.time_s, columns)
 
 

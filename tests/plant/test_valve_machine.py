@@ -111,3 +111,31 @@ def test_the_fmu_export_refuses_a_valve_circuit_in_one_line(
     assert err.count("\n") == 1 and "Traceback" not in err, err
     assert "[circuit] kind = 'valve'; the FMU export supports kind 'pump' only" in err, err
     assert not (tmp_path / "valve.fmu").exists()
+
+
+def test_the_gain_gradient_runs_on_the_valve_and_names_its_spool(machine_args) -> None:
+    """The machine design's runs on a valve circuit: the spool command and velocity are the
+    columns the pump limits are judged on (x_s_ref, xd_s), with or without the ride control
+    off below a speed."""
+    import dataclasses
+
+    import numpy as np
+
+    from loader_model.control.settings import default_settings
+    from loader_model.simulation.courses import paper_course
+    from loader_model.simulation.gain_sensitivity import gain_gradient
+    from loader_model.simulation.scenario import resolve_scenario
+    from loader_model.simulation.settling import limit_duty
+    from loader_model.simulation.simulator import course_input
+
+    for gate_kmh, moving in ((0.0, True), (9.5, False)):
+        settings = dataclasses.replace(default_settings(), ride_control_min_speed=gate_kmh / 3.6)
+        scenario = resolve_scenario(
+            VALUES, "full", controller="skyhook", settings=settings, machine=str(DESCRIPTION)
+        )
+        run = gain_gradient(scenario, course_input(paper_course(9.0), scenario))
+        assert {"x_s_ref", "xd_s"} <= set(run.columns) and "V_p_ref" not in run.columns
+        assert bool(np.any(run.gradient != 0.0)) is moving
+        plant = scenario.plant
+        duty = limit_duty(run.columns, plant.command_limit(), plant.rate_limit())
+        assert 0.0 <= duty.command <= 1.0 and 0.0 <= duty.rate <= 1.0
