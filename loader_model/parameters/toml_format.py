@@ -80,8 +80,9 @@ def iter_leaves(cls: type, prefix: str = "") -> Iterator[tuple[str, type, str]]:
 def _check_keys(
     data: Mapping[str, Any], allowed: list[str], where: str, optional: frozenset[str] = frozenset()
 ) -> None:
-    """Reject unknown keys (with the closest valid key) and report missing ones (``optional``
-    keys may be missing)."""
+    """Reject unknown keys (with the closest valid key) and report missing ones.
+
+    Keys in ``optional`` may be missing."""
     for key in data:
         if key not in allowed:
             close = difflib.get_close_matches(key, allowed, n=1, cutoff=0.5)
