@@ -74,11 +74,6 @@ def run(args: argparse.Namespace) -> int:
         )
     layout = layout_from_arguments(args)
     info = layout.machine
-    if info.circuit != "pump":
-        raise ValueError(
-            f"--machine {args.machine}: its lift circuit is [circuit] kind = {info.circuit!r}; "
-            "the FMU export supports kind 'pump' only (the paper's pump circuit)"
-        )
     if not info.is_default:
         return _run_machine(args, layout)
     from loader_model.plant.plant_parameters import plant_parameter_vector

@@ -15,8 +15,9 @@ an output of the closed-loop FMU; the road and disturbances stay inputs.
 
 Controller parameters: the settings of :data:`~loader_model.control.settings.SETTINGS_NAMES`
 as ``controller.<name>``, except four facts of the plant that the graph takes from the plant's
-own parameters (V_p_max, g, N_x) and from its static equilibrium (u_hold), so that changing a
-plant parameter in the importing tool keeps the controller consistent.
+own parameters (V_p_max, or a valve circuit's spool stroke x_s_max; g, N_x) and from its static
+equilibrium (u_hold), so that changing a plant parameter in the importing tool keeps the
+controller consistent. A valve circuit's command is the spool position x_s_ref.
 
 Any described machine: the controllers read their sensors by name
 (:data:`~loader_model.control.sensors.SENSOR_NAMES`: f_Hx, f_Hy, f_Ny, φ, p_A), which every
@@ -35,7 +36,7 @@ import numpy as np
 from loader_model.control.controllers import controller_function, controller_state_names
 from loader_model.control.sensors import SENSOR_NAMES
 from loader_model.control.settings import SETTINGS_NAMES
-from loader_model.fmu.variables import FmuVariable, fmu_parameter_names
+from loader_model.fmu.variables import ACTUATOR_COMMANDS, FmuVariable, fmu_parameter_names
 from loader_model.plant.layout import SKID_STEER, PlantLayout
 
 __all__ = [
@@ -45,8 +46,15 @@ __all__ = [
     "controller_parameter_values",
 ]
 
-#: Settings the graph takes from the plant: setting name -> plant parameter (u_hold: equilibrium).
+#: Settings the graph takes from the plant: setting name -> plant parameter (u_hold: equilibrium;
+#: V_p_max: the actuator's command limit, a valve's spool stroke x_s_max).
 _FROM_PLANT = {"V_p_max": "V_p_max", "g": "g", "N_x": "N_x", "u_hold": None}
+
+
+def _from_plant(layout: PlantLayout) -> dict[str, str | None]:
+    """:data:`_FROM_PLANT` for the machine's circuit: the command limit is its own parameter."""
+    return _FROM_PLANT | {"V_p_max": layout.command_limit}
+
 
 #: (name, unit, description) of the controller's FMU parameters, in value-reference order.
 CONTROLLER_PARAMETERS: tuple[tuple[str, str, str], ...] = (
@@ -61,7 +69,7 @@ CONTROLLER_PARAMETERS: tuple[tuple[str, str, str], ...] = (
     ("a_norm", "m/s^2", "normalisation of linear acceleration (2 g)"),
     ("alpha_norm", "rad/s^2", "normalisation of angular acceleration"),
     ("phi_norm", "rad", "normalisation of the boom angle"),
-    ("u_limit", "m^3/rev", "saturation of the pump command"),
+    ("u_limit", "m^3/rev", "saturation of the command (the pump's; a valve's in m of spool)"),
     ("p_norm", "Pa", "normalisation of p_A for the load case"),
     ("phi_0", "rad", "boom angle of the operating point (plant output phi)"),
 )
@@ -108,7 +116,8 @@ def closed_loop_functions(
     n_z = len(controller_state_names(controller))
     parameter_names = fmu_parameter_names(layout)
     n_p = len(parameter_names)
-    facts_from = tuple(v for v in _FROM_PLANT.values() if v)
+    from_plant = _from_plant(layout)
+    facts_from = tuple(v for v in from_plant.values() if v)
     fact_index = dict(
         zip(
             facts_from,
@@ -117,7 +126,7 @@ def closed_loop_functions(
         )
     )
     sensor_index = _named_indices(layout.output_names, SENSOR_NAMES, "outputs", layout)
-    (hold_index,) = _named_indices(layout.state_names, ("V_p",), "state", layout)
+    (hold_index,) = _named_indices(layout.state_names, (layout.actuator_state,), "state", layout)
     x = ca.SX.sym("x", ode.size1_in(0))
     inputs = ca.SX.sym("in", ode.size1_in(1))
     p = ca.SX.sym("p", n_p + len(_EXPOSED))
@@ -125,10 +134,10 @@ def closed_loop_functions(
     plant_p, exposed = p[:n_p], dict(zip(_EXPOSED, ca.vertsplit(p[n_p:]), strict=True))
     _, y = ode(x, inputs, plant_p)
     x0 = start(plant_p)
-    # the holding command of the static equilibrium is V_p of the static state
+    # the holding command of the static equilibrium is the actuator's static state (V_p, x_s)
     facts = {
         "u_hold": x0[hold_index],
-        **{k: plant_p[fact_index[v]] for k, v in _FROM_PLANT.items() if v},
+        **{k: plant_p[fact_index[v]] for k, v in from_plant.items() if v},
     }
     settings = ca.vertcat(*[exposed.get(name, facts.get(name)) for name in SETTINGS_NAMES])
     sensors = ca.vertcat(*[y[i] for i in sensor_index])
@@ -158,17 +167,22 @@ def closed_loop_variables(
     from dataclasses import replace
 
     n_p = len(fmu_parameter_names(layout))
-    if plant_variables[n_p].name != "V_p_ref":
+    command_name, command_unit, command_description = ACTUATOR_COMMANDS[layout.circuit]
+    if plant_variables[n_p].name != command_name:
         raise ValueError(
             f"plant_variables of machine {layout.name!r}: variable {n_p} is "
-            f"{plant_variables[n_p].name!r}, expected the command 'V_p_ref'"
+            f"{plant_variables[n_p].name!r}, expected the command {command_name!r}"
         )
+    parameters = [
+        (name, command_unit if name == "u_limit" else unit, description)
+        for name, unit, description in CONTROLLER_PARAMETERS
+    ]
     settings_vars = [
         FmuVariable(
             f"controller.{name}", 0, "parameter", "fixed", "exact", unit, description, value
         )
         for (name, unit, description), value in zip(
-            CONTROLLER_PARAMETERS, controller_parameter_values(settings), strict=True
+            parameters, controller_parameter_values(settings), strict=True
         )
     ]
     command = replace(
@@ -177,7 +191,7 @@ def closed_loop_variables(
         variability="discrete",
         initial="calculated",
         start=None,
-        description=f"pump displacement command of the {controller} controller, held over T_s",
+        description=f"{command_description} of the {controller} controller, held over T_s",
     )
     states = [
         FmuVariable(

@@ -25,7 +25,7 @@ from pathlib import Path
 import casadi as ca
 import numpy as np
 
-from loader_model.fmu.variables import state_nominals
+from loader_model.fmu.variables import ACTUATOR_COMMANDS, state_nominals
 from loader_model.plant.equilibrium import static_state
 from loader_model.plant.layout import (
     SKID_STEER,
@@ -33,7 +33,7 @@ from loader_model.plant.layout import (
     PlantLayout,
     resolve_layout,
 )
-from loader_model.plant.plant import EXOGENOUS_NAMES, INPUT_NAMES, plant_function
+from loader_model.plant.plant import EXOGENOUS_NAMES, plant_function
 
 __all__ = ["CrossCheck", "bump_input", "cross_check", "reference_response"]
 
@@ -95,9 +95,10 @@ def reference_response(
     controller Function reads the sensors of y(t_k) and its command is held until t_{k+1}; its
     states start at their fixed point (:func:`~loader_model.control.linear_controller.
     linear_controller`). The time grid must then be the controller's sample grid. The command is
-    returned as ``V_p_ref``. ``layout`` (default the skid-steer) is the plant's machine; ``w``
-    then has the columns of its exogenous inputs (the same names as the skid-steer's), and the
-    controller reads its sensors by name from that machine's outputs.
+    returned as ``V_p_ref`` (a valve circuit's ``x_s_ref``). ``layout`` (default the skid-steer)
+    is the plant's machine; ``w`` then has the columns of its exogenous inputs (the same names
+    as the skid-steer's), and the controller reads its sensors by name from that machine's
+    outputs.
     """
     plant = plant_function(layout)
     x0, u0 = static_state(params, layout)
@@ -145,7 +146,7 @@ def reference_response(
     outputs = plant.map(time.size)(x.T, np.array(commands)[None, :], w.T, params)[1]
     y = np.asarray(outputs)
     named = {name: y[i] for i, name in enumerate(layout.output_names)}
-    return named | {"V_p_ref": np.array(commands)}
+    return named | {ACTUATOR_COMMANDS[layout.circuit][0]: np.array(commands)}
 
 
 def cross_check(
@@ -168,7 +169,7 @@ def cross_check(
         Relative tolerance of FMPy's CVode (its absolute tolerance is this times the nominals).
     controller, settings
         For a closed-loop FMU: the controller and its settings vector it was built with; the
-        pump command ``V_p_ref`` is then compared too.
+        pump command ``V_p_ref`` (a valve circuit's ``x_s_ref``) is then compared too.
     machine : PlantLayout, str or pathlib.Path
         The FMU's machine: resolved (:func:`~loader_model.plant.layout.plant_layout`), or a name
         or description file resolved once here (default the skid-steer).
@@ -180,17 +181,19 @@ def cross_check(
     reference = reference_response(
         params, time, w, controller=controller, settings=settings, layout=layout
     )
-    compared = COMPARED if controller is None else (*COMPARED, "V_p_ref")
+    command = ACTUATOR_COMMANDS[layout.circuit][0]
+    compared = COMPARED if controller is None else (*COMPARED, command)
     # a staircase table (each sample repeated at the next sample's time): FMPy then stops at
     # every sample as an input event and restarts CVode there, so the input is exactly held
-    names = EXOGENOUS_NAMES if controller is not None else (*INPUT_NAMES, *EXOGENOUS_NAMES)
+    exogenous = layout.exogenous_names
+    names = exogenous if controller is not None else (command, *exogenous)
     stairs = np.repeat(time, 2)[1:]  # t0, t1, t1, t2, t2, ..., tN, tN
     held = np.repeat(w, 2, axis=0)[:-1]  # w0, w0, w1, w1, w2, ..., wN
     signal = np.zeros(stairs.size, dtype=[("time", float)] + [(name, float) for name in names])
     signal["time"] = stairs
     if controller is None:
-        signal[INPUT_NAMES[0]] = static_state(params, layout)[1]
-    for i, name in enumerate(EXOGENOUS_NAMES):
+        signal[command] = static_state(params, layout)[1]
+    for i, name in enumerate(exogenous):
         signal[name] = held[:, i]
     result = fmpy.simulate_fmu(
         str(fmu_path),

@@ -35,7 +35,7 @@ from loader_model.fmu.variable_tables import (
     _STATE_DESCRIPTIONS,
     _STATE_UNITS,
 )
-from loader_model.plant.layout import SKID_STEER, PlantLayout
+from loader_model.plant.layout import CIRCUITS, SKID_STEER, PlantLayout
 from loader_model.plant.plant import EXOGENOUS_NAMES, INPUT_NAMES, OUTPUT_NAMES, STATE_NAMES
 from loader_model.plant.plant_parameters import (
     HYDRAULIC_PARAMETERS,
@@ -43,9 +43,11 @@ from loader_model.plant.plant_parameters import (
     PLANT_PARAMETER_NAMES,
     PLANT_PARAMETER_UNITS,
 )
+from loader_model.plant.valve_circuit import VALVE_PARAMETERS
 from loader_model.simulation.result import column_unit
 
 __all__ = [
+    "ACTUATOR_COMMANDS",
     "COMPLETED_PARAMETERS",
     "FMU_PARAMETER_NAMES",
     "FmuVariable",
@@ -55,6 +57,11 @@ __all__ = [
     "state_nominals",
 ]
 
+#: Per lift circuit, the plant's command input: name, unit, description.
+ACTUATOR_COMMANDS: dict[str, tuple[str, str, str]] = {
+    "pump": (INPUT_NAMES[0], "m^3/rev", "pump displacement command V_p,ref"),
+    "valve": ("x_s_ref", "m", "spool position command x_s,ref of the proportional valve"),
+}
 #: Parameters the plant completes inside its graph (static tyre loads): not exported.
 COMPLETED_PARAMETERS: tuple[str, ...] = ("F_Ay0", "F_By0")
 #: The FMU's parameters, in value-reference order.
@@ -100,7 +107,9 @@ def _unit(unit: str) -> str:
 
 
 def _parameter_description(name: str, layout: PlantLayout | None = None) -> str:
-    hydraulic = {item[0]: item[2] for item in HYDRAULIC_PARAMETERS + OCCUPANT_PARAMETERS}
+    hydraulic = {
+        item[0]: item[2] for item in HYDRAULIC_PARAMETERS + OCCUPANT_PARAMETERS + VALVE_PARAMETERS
+    }
     if layout is not None and name in layout.machine.parameter_descriptions:
         return layout.machine.parameter_descriptions[name] or name
     return generated.PARAMETER_DESCRIPTIONS.get(name) or hydraulic[name]
@@ -109,7 +118,9 @@ def _parameter_description(name: str, layout: PlantLayout | None = None) -> str:
 def _parameter_unit(name: str, layout: PlantLayout | None) -> str:
     if layout is not None and name in layout.machine.parameter_units:
         return layout.machine.parameter_units[name]
-    return PLANT_PARAMETER_UNITS[name]
+    if name in PLANT_PARAMETER_UNITS:
+        return PLANT_PARAMETER_UNITS[name]
+    return {item[0]: item[1] for item in VALVE_PARAMETERS}[name]  # a valve circuit's own
 
 
 def _layout(layout: PlantLayout) -> PlantLayout | None:
@@ -181,13 +192,15 @@ def state_nominals(
     names = PLANT_PARAMETER_NAMES if own is None else own.parameter_names
     states = STATE_NAMES if own is None else own.state_names
     values = dict(zip(names, np.asarray(params, dtype=float), strict=True))
-    floors = _NOMINAL_FLOOR | {
-        "m^3/rev": values["V_p_max"],
-        "m^3/(rev*s)": values["Vd_p_max"],
-        "m^3": max(values["n_acc"] * values["V_0"], 1e-4),
-    }
+    floors = _NOMINAL_FLOOR | {"m^3": max(values["n_acc"] * values["V_0"], 1e-4)}
+    # the actuator's position and rate (V_p, Vd_p or x_s, xd_s): at least their limits
+    actuator, rate = CIRCUITS[layout.circuit][:2]
+    limits = {actuator: values[layout.command_limit], rate: values[layout.rate_limit]}
     return np.array(
-        [max(abs(float(v)), floors[_state_unit(name)]) for name, v in zip(states, x0, strict=True)]
+        [
+            max(abs(float(v)), limits[name] if name in limits else floors[_state_unit(name)])
+            for name, v in zip(states, x0, strict=True)
+        ]
     )
 
 
@@ -216,15 +229,16 @@ def fmu_variables(
         unit = _unit(_parameter_unit(name, own))
         description = _parameter_description(name, own)
         out.append(FmuVariable(name, len(out), *fixed, unit, description, value))
+    command, unit, description = ACTUATOR_COMMANDS[layout.circuit]
     out.append(
         FmuVariable(
-            INPUT_NAMES[0],
+            command,
             len(out),
             "input",
             "continuous",
             "",
-            "m^3/rev",
-            "pump displacement command V_p,ref (start: the static command that holds the boom)",
+            unit,
+            f"{description} (start: the static command that holds the boom)",
             u0,
         )
     )

@@ -1,4 +1,4 @@
-"""The plant FMU of another described machine (issue 23): the compact wheel loader's."""
+"""The plant FMU of another described machine: the compact wheel loader's."""
 
 from __future__ import annotations
 
@@ -103,7 +103,7 @@ def test_wheel_loader_closed_loop_fmu_reproduces_the_sampled_loop(
     check = cross_check(
         path, plant.params, controller=controller, settings=settings, machine=MACHINE
     )
-    # the skid-steer's acceptance (issue 15): 1e-3 of each signal's excursion
+    # the skid-steer's acceptance: 1e-3 of each signal's excursion
     for name in ("f_Sx", "f_Sy", "p_A", "p_B", "phi", "V_p_ref"):
         assert check.relative_error[name] < 1e-3, (name, check.relative_error)
     # the loop acts: the command leaves the holding command by more than round-off
@@ -143,7 +143,7 @@ def test_wheel_loader_fmu_reproduces_cvodes_on_its_plant_function(tmp_path: Path
     params = resolve_plant(None, "full", machine=MACHINE).params
     path = export_plant_fmu(tmp_path / "wl.fmu", params, include_sources=False, machine=MACHINE)
     result = cross_check(path, params, machine=MACHINE)
-    # the skid-steer's acceptance (issue 15): 1e-3 of each signal's excursion (measured ~6e-6)
+    # the skid-steer's acceptance: 1e-3 of each signal's excursion (measured ~6e-6)
     assert max(result.relative_error.values()) < 1e-3, result.relative_error
 
 

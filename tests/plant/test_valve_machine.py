@@ -97,20 +97,51 @@ def test_a_bad_valve_value_exits_with_one_line(
     assert "[valve]: damping_ratio = 9.0 - is out of range; allowed: [0.05, 5]" in err, err
 
 
-def test_the_fmu_export_refuses_a_valve_circuit_in_one_line(
-    machine_args: list[str], tmp_path: Path, capsys: pytest.CaptureFixture[str]
+@pytest.mark.parametrize("controller", [None, "skyhook"])
+def test_the_valve_machines_fmu_reproduces_the_simulators_plant_and_loop(
+    machine_args: list[str], tmp_path: Path, controller: str | None
 ) -> None:
-    from loader_model.fmu.build import find_compiler
+    """The FMU of a valve circuit: the spool command x_s_ref is its input (the plant) or its
+    held output (the closed loop), and FMPy's run over the bump of the cross-check follows the
+    reference of the plant Function and the sampled controller to 1e-4 of each signal's
+    excursion (measured at most 1.6e-5; the skid-steer's acceptance is 1e-3)."""
+    import numpy as np
+
+    fmpy = pytest.importorskip("fmpy")
+    validate_fmu = pytest.importorskip("fmpy.validation").validate_fmu
+    from loader_model.fmu.build import export_plant_fmu, find_compiler
+    from loader_model.fmu.crosscheck import cross_check
+    from loader_model.plant.plant_parameters import PlantOptions
+    from loader_model.plant.scenario import resolve_plant
+    from loader_model.simulation.scenario import ride_scenario
 
     try:
         find_compiler()
     except ValueError:
-        pytest.skip("no C compiler: export-fmu stops before reading the machine")
-    assert main(["export-fmu", *machine_args, str(tmp_path / "valve.fmu")]) == 2
-    err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "Traceback" not in err, err
-    assert "[circuit] kind = 'valve'; the FMU export supports kind 'pump' only" in err, err
-    assert not (tmp_path / "valve.fmu").exists()
+        pytest.skip("no C compiler")
+    options = PlantOptions.for_controller(controller or "baseline") if controller else None
+    plant = resolve_plant(VALUES, "full", options, machine=str(DESCRIPTION))
+    settings = None if controller is None else ride_scenario(plant, controller).settings
+    path = export_plant_fmu(
+        tmp_path / "valve.fmu",
+        plant.params,
+        controller=controller,
+        settings=settings,
+        include_sources=False,
+        machine=str(DESCRIPTION),
+    )
+    assert validate_fmu(str(path)) == []
+    command = next(v for v in fmpy.read_model_description(str(path)).modelVariables
+                   if v.name == "x_s_ref")  # fmt: skip
+    assert command.causality == ("input" if controller is None else "output")
+    assert command.unit == "m"
+    check = cross_check(
+        path, plant.params, controller=controller, settings=settings, machine=str(DESCRIPTION)
+    )
+    for name, error in check.relative_error.items():
+        assert error < 1e-4, (name, check.relative_error)
+    if controller is not None:  # the loop acts: the spool leaves its holding position
+        assert np.ptp(check.reference["x_s_ref"]) > 100.0 * abs(plant.u0)
 
 
 def test_the_gain_gradient_runs_on_the_valve_and_names_its_spool(machine_args) -> None:
