@@ -96,7 +96,7 @@ designs: setup
 	$(VENV)/bin/loader-model design --machine compact_wheel_loader --method machine --no-progress --output loader_model/data/controller_machine_compact_wheel_loader.toml
 	$(VENV)/bin/loader-model check-design loader_model/data/controller_machine_compact_wheel_loader.toml --machine compact_wheel_loader --no-progress --output loader_model/data/design_check_compact_wheel_loader.md
 	$(VENV)/bin/loader-model design --machine tractor_front_loader --method machine --start loader_model/data/controller_gated.toml --no-progress --output loader_model/data/controller_machine_tractor_front_loader.toml
-	$(VENV)/bin/loader-model check-design loader_model/data/controller_machine_tractor_front_loader.toml --machine tractor_front_loader --no-progress --output loader_model/data/design_check_tractor_front_loader.md
+	$(VENV)/bin/loader-model check-design loader_model/data/controller_machine_tractor_front_loader.toml --machine tractor_front_loader --study loader_model/data/robustness_tractor.toml --no-progress --output loader_model/data/design_check_tractor_front_loader.md
 
 ## bound: the bound for the four Table 6 conditions, shipped for the report (a slow test checks it)
 bound: setup

@@ -94,7 +94,11 @@ def test_the_shipped_designs_figures_are_its_checks() -> None:
     ]
     fifteen = [v for c, v in changes.items() if "15 km/h" in c] + [changes["empty, boards 18 km/h"]]
     quotes.append(f"{-max(fifteen):.1f}-{-min(fifteen):.1f} % better than the baseline")
+    sampled = re.findall(r"(\d+) of (\d+) sampled plants unstable, worst margin (\d\.\d+)", text)
+    assert [unstable for unstable, _, _ in sampled] == ["0", "0"]
+    quotes.append(f"none of the {sum(int(n) for _, n, _ in sampled)} is unstable")
     margins = re.findall(r"loop margin (\d\.\d+) rad/s", text)
+    assert [worst for _, _, worst in sampled] == margins  # "the worst margins are the nominal"
     quotes.append(f"The loop's margin is {margins[0]} rad/s with the empty bucket")
     quotes.append(f"and {margins[1]} with the full one")
     for quote in quotes:
