@@ -175,6 +175,8 @@ def run(args: argparse.Namespace) -> int:
         f"{result.metadata['wall_time_s']:.3f} s (real-time factor "
         f"{result.metadata['real_time_factor']:.0f}, {result.metadata['backend']})"
     )
+    if "ride_control" in result.metadata:  # below the settings' ride_control_min_speed
+        print(f"ride control: {result.metadata['ride_control']}; the run is the baseline's")
     _print_limits(result, scenario.plant)
     _print_events(result.events)
     if args.output is not None:

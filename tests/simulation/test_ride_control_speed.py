@@ -160,3 +160,18 @@ def test_a_design_keeps_the_starts_settings_but_its_gains(tmp_path) -> None:
     shipped = default_settings()
     assert written.linear_acceleration_norm == shipped.linear_acceleration_norm  # not the start's
     assert start.linear_acceleration_norm < shipped.linear_acceleration_norm
+
+
+def test_simulate_says_when_the_ride_control_is_off(tmp_path, capsys) -> None:
+    from loader_model.cli import main
+
+    path = tmp_path / "gated.toml"
+    save_settings(_gated(), path)
+    argv = ["simulate", "--controller", str(path), "--course", "single", "--duration", "3"]
+    assert main([*argv, "--speed", "5"]) == 0
+    assert (
+        "ride control: skyhook off: 5 km/h is below its ride_control_min_speed of 9.5 km/h; "
+        "the run is the baseline's" in capsys.readouterr().out
+    )
+    assert main([*argv, "--speed", "12"]) == 0
+    assert "ride control:" not in capsys.readouterr().out
