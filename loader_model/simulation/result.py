@@ -17,6 +17,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import MappingProxyType
+from typing import Any
 
 import numpy as np
 
@@ -30,6 +31,7 @@ __all__ = [
     "SimulationResult",
     "column_unit",
     "command_column",
+    "machine_units",
     "seat_signal_names",
 ]
 
@@ -129,6 +131,18 @@ def column_unit(name: str) -> str:
     return COLUMN_UNITS.get(name) or _axle_unit(name)
 
 
+def machine_units(info: Any) -> dict[str, str]:
+    """Units of the columns a machine's description names (:class:`~loader_model.machines.
+    MachineInfo`): each coordinate in m (its length coordinates) or rad (every other, an angle),
+    its rate per second, and the joint angles' outputs in rad."""
+    lengths = set(info.length_coordinates)
+    units = {}
+    for coordinate, rate in zip(info.coordinate_names, info.rate_names, strict=True):
+        unit = "m" if coordinate in lengths else "rad"
+        units |= {coordinate: unit, rate: f"{unit}/s"}
+    return units | dict.fromkeys(info.joint_angles, "rad")
+
+
 def seat_signal_names() -> dict[str, str]:
     """The seat's ISO 2631 axes and the plant outputs (:data:`~loader_model.plant.plant.
     OUTPUT_NAMES`) that carry them: x = f_Px, z = f_Py, the seat pad under the occupant
@@ -212,9 +226,11 @@ class SimulationResult:
         return tuple(self.columns)
 
     def unit(self, name: str) -> str:
-        """Unit of column ``name`` (any axle's tyre and road columns by their pattern, ``"-"``
-        for the controller's state and other columns of no listed unit)."""
-        return column_unit(name)
+        """Unit of column ``name`` (any axle's tyre and road columns by their pattern, another
+        machine's coordinates and joint angles from its description (metadata ``units``),
+        ``"-"`` for the controller's state and other columns of no listed unit)."""
+        described = self.metadata.get("units", {})
+        return described.get(name) or column_unit(name)  # type: ignore[union-attr]
 
     def seat_record(self) -> object:
         """The seat's accelerations as an ISO 2631 record: x = f_Px, z = f_Py, pitch = θ̈1.

@@ -39,7 +39,7 @@ from loader_model.simulation.adaptive import SUBSTEP_COUNTS
 from loader_model.simulation.controllers import CONTROLLER_PERIOD_S
 from loader_model.simulation.courses import Course
 from loader_model.simulation.events import DEFAULT_AIRBORNE_MIN_S, find_events
-from loader_model.simulation.result import SimulationResult
+from loader_model.simulation.result import SimulationResult, machine_units
 from loader_model.simulation.scenario import Scenario, as_plant, as_scenario
 from loader_model.simulation.stepper import compile_period, rolled_period
 from loader_model.simulation.tandem_cam import DEFAULT_ENVELOPE, check_envelope
@@ -366,6 +366,8 @@ def simulate(
         "validity": dataclasses.asdict(monitor.bounds),
         "machine": layout.name,
     }
+    if not layout.machine.is_default:  # the units of the columns its description names
+        metadata["units"] = machine_units(layout.machine)
     if scenario is not given:
         metadata["ride_control"] = (
             f"{given.name} off: {road.speed_m_s * 3.6:g} km/h is below its "
