@@ -55,7 +55,7 @@ from loader_model.experiments.design_check.runs import (
     rest_level,
 )
 from loader_model.experiments.design_check.verdict import ACTUATOR_NAMES, MARGIN_RTOL
-from loader_model.experiments.stable_start import nearest_stable_gain
+from loader_model.experiments.stable_start import START_MARGIN_FACTOR, stable_start
 from loader_model.plant.layout import SKID_STEER, PlantLayout
 
 __all__ = [
@@ -72,12 +72,6 @@ __all__ = [
 #: it): the linear comfort design of the compact wheel loader rides the pump's limits on the
 #: empty bucket's boards at 18 km/h (command 8.2 %, rate 10.6 % of the run, measured).
 START_SHRINK = 0.7
-#: A start short of the margin σ on a plant is moved to the nearest gain that keeps this many
-#: times σ: a start on the constraint's edge leaves the descent no step that keeps it (measured
-#: on the skid-steer from the course-refined gains: moved to keep σ = 0.1 rad/s, every step of
-#: the first iteration was rejected; moved to keep 0.2 rad/s, three steps lowered J from 0.704
-#: to 0.670).
-START_MARGIN_FACTOR = 2.0
 START_SHRINKS = 6
 #: The scenarios the gains are optimised over by default: both loads, the paper's boards at 9
 #: and 18 km/h and an ISO 8608 class C road at 15 km/h.
@@ -242,20 +236,6 @@ class _Problem:
         return float(np.mean(np.square(ratios))), gradient / count, totals
 
 
-def _stable_start(given: np.ndarray, plants: list[Any], margin: float) -> np.ndarray:
-    """``given`` if its loop keeps ``margin`` on ``plants`` (as the check judges it: the linear
-    design's optimum lies on the margin itself); else the nearest gain that keeps
-    :data:`START_MARGIN_FACTOR` times it (or the margin itself where that is out of reach)."""
-    from loader_model.experiments.stable_start import loop_margin
-
-    if loop_margin(plants, given) >= margin * (1.0 - MARGIN_RTOL):  # the check's tolerance
-        return given
-    try:
-        return nearest_stable_gain(given, plants, START_MARGIN_FACTOR * margin).ravel()
-    except ValueError:
-        return nearest_stable_gain(given, plants, margin).ravel()
-
-
 def design_on_machine(
     start_gain: Any,
     *,
@@ -330,7 +310,7 @@ def design_on_machine(
         raise ValueError(f"start_gain = {given.tolist()}; allowed: 4 finite gains")
     # a start unstable on a sampled plant (or short of σ on a nominal one) is moved to the
     # nearest gain that keeps σ on all of them (module notes of stable_start)
-    gain = _stable_start(given, [*problem.plants, *problem.sampled], float(margin))
+    gain = stable_start(given, [*problem.plants, *problem.sampled], float(margin))
     first = problem.evaluate(gain)
     for _ in range(START_SHRINKS):  # a smaller gain asks less of the pump (module notes)
         if not isinstance(first, str):

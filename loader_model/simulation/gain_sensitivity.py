@@ -201,11 +201,11 @@ def gain_gradient(
     SimulationError
         If the run leaves the finite numbers.
     """
+    from loader_model.simulation.period_inputs import sensor_error_table
     from loader_model.simulation.result import seat_signal_names
     from loader_model.simulation.simulator import (
         CONTROLLER_PERIOD_S,
         DEFAULT_SUBSTEPS,
-        _sensor_errors,
         exogenous_table,
     )
     from loader_model.simulation.validity_check import raise_if_not_finite
@@ -224,7 +224,7 @@ def gain_gradient(
     count = int(np.floor(total_s / period_s + 1e-9))
     time_s = np.arange(count + 1) * period_s
     exogenous = exogenous_table(road, time_s, None)
-    y_errors, y_steps = _sensor_errors(sensors, count, layout.output_names)
+    y_errors, y_steps = sensor_error_table(sensors, count, layout.output_names)
     period = (
         _compiled(controller, period_s, substeps, layout, tuple(gains))
         if jit

@@ -39,6 +39,7 @@ from loader_model.simulation.adaptive import SUBSTEP_COUNTS
 from loader_model.simulation.controllers import CONTROLLER_PERIOD_S
 from loader_model.simulation.courses import Course
 from loader_model.simulation.events import DEFAULT_AIRBORNE_MIN_S, find_events
+from loader_model.simulation.period_inputs import disturbance_table, sensor_error_table
 from loader_model.simulation.result import SimulationResult, machine_units
 from loader_model.simulation.scenario import Scenario, as_plant, as_scenario
 from loader_model.simulation.stepper import compile_period, rolled_period
@@ -253,12 +254,12 @@ def simulate(
         raise ValueError(f"duration must hold at least 2 periods of {period_s:g} s; got {total_s}")
     time_s = np.arange(count + 1) * period_s
     exogenous = exogenous_table(
-        road, time_s, None if disturbance is None else _extend(disturbance, count)
+        road, time_s, None if disturbance is None else disturbance_table(disturbance, count)
     )
     layout = scenario.plant.layout
     state_names, output_names = layout.state_names, layout.output_names
     n_w = len(layout.exogenous_names)
-    y_errors, y_steps = _sensor_errors(sensors, count, output_names)
+    y_errors, y_steps = sensor_error_table(sensors, count, output_names)
     bounds = resolve_bounds(validity, params, layout=layout, tyre_radius_m=road.tyre_radii_m)
     monitor = validity_check.ValidityMonitor(bounds, period_s, layout)
     period, backend = compile_period(controller, period_s, substeps, jit, layout, jacobian)
@@ -379,29 +380,3 @@ def simulate(
     if violation is not None:
         raise ModelValidityError.stopping(violation, result)
     return result
-
-
-def _sensor_errors(
-    sensors: SensorModel | None, count: int, output_names: tuple[str, ...] = OUTPUT_NAMES
-) -> tuple[np.ndarray, np.ndarray]:
-    """Per-period additive errors (count + 1, outputs) and converter steps (outputs) of the
-    controller's sensors; zero outside :data:`~loader_model.control.sensors.SENSOR_NAMES`."""
-    errors = np.zeros((count + 1, len(output_names)))
-    steps = np.zeros(len(output_names))
-    if sensors is None:
-        return errors, steps
-    if not isinstance(sensors, SensorModel):
-        raise TypeError(f"sensors must be a SensorModel or None; got {type(sensors).__name__}")
-    columns = [output_names.index(name) for name in SENSOR_NAMES]
-    errors[:, columns] = sensors.errors(count + 1)
-    steps[columns] = sensors.quantisation
-    return errors, steps
-
-
-def _extend(disturbance: np.ndarray, count: int) -> np.ndarray:
-    table = np.asarray(disturbance, dtype=float)
-    if table.ndim != 2 or table.shape[0] != count:
-        raise ValueError(
-            f"disturbance must be ({count}, 3) at the controller's instants; got {table.shape}"
-        )
-    return np.vstack([table, table[-1:]])
