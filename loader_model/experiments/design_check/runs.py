@@ -233,9 +233,14 @@ def run_condition(
     from loader_model.simulation.validity_check import ModelValidityError, SimulationError
 
     course = condition_course(condition, envelope)
-    outcomes = {}
+    outcomes: dict[str, RunOutcome] = {}
+    gated = False  # the design's ride control is off at this speed: its run is the baseline's
     for which in COMPARED:
+        if which == "baseline" and gated:
+            outcomes[which] = outcomes["design"]
+            continue
         scenario = condition_scenario(design, condition.load, which)
+        gated = which == "design" and scenario.at_speed(course.speed_m_s) is not scenario
         try:
             result = simulate(
                 course_input(course, scenario),
